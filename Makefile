@@ -1,0 +1,68 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+#
+# The one entry point.
+#   make            install missing dependencies, build everything, link bin/ lib/
+#   make test       build, then run every test (ctest, then pytest; pytest's
+#                   summary line is the last line)
+#   make demo       the main job (see README)
+#   make bench      speed figures next to their anchors (not part of `make test`)
+#   make lint       Verilator --lint-only -Wall on every HDL file
+#   SANITIZE=1      build host code with ASan+UBSan into build-san/ (CI does this)
+#   JOBS=n          parallel build jobs (default: number of cores)
+
+SHELL := /bin/bash
+ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
+JOBS ?= $(shell nproc)
+
+ifeq ($(SANITIZE),1)
+BUILD := $(ROOT)/build-san
+CMAKE_FLAGS += -DSANITIZE=ON
+else
+BUILD := $(ROOT)/build
+endif
+
+# Every recipe runs with the venv's Verilator 5.048 and bin/ first on PATH.
+ENV := source $(ROOT)/scripts/env.sh &&
+PYTEST_ARGS ?=
+
+.PHONY: all deps build test test-host test-py demo bench lint clean distclean fuzz
+
+all: build
+
+deps: $(ROOT)/.venv/.pinned
+$(ROOT)/.venv/.pinned: $(ROOT)/scripts/setup.sh
+	bash $(ROOT)/scripts/setup.sh
+
+build: deps
+	@$(ENV) cmake -S $(ROOT) -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_FLAGS) >/dev/null
+	@$(ENV) cmake --build $(BUILD) -j $(JOBS)
+	@ln -sfn $(BUILD)/bin $(ROOT)/bin
+	@ln -sfn $(BUILD)/lib $(ROOT)/lib
+	@echo "build: ok ($(BUILD)); put $(ROOT)/bin on PATH or run: . scripts/env.sh"
+
+# C unit tests first, then everything pytest collects (cocotb, HAL regression,
+# end-to-end).  pytest runs last so its summary line ends the output.
+test: build
+	@$(ENV) cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	@$(ENV) cd $(ROOT) && SANITIZE=$(SANITIZE) python -m pytest $(PYTEST_ARGS) tests
+
+test-host: build
+	@$(ENV) cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	@$(ENV) bash $(ROOT)/scripts/demo.sh
+
+bench: build
+	@$(ENV) bash $(ROOT)/bench/run.sh
+
+lint: deps
+	@$(ENV) bash $(ROOT)/scripts/lint.sh
+
+fuzz: deps
+	@$(ENV) bash $(ROOT)/scripts/fuzz.sh
+
+clean:
+	rm -rf $(ROOT)/build $(ROOT)/build-san $(ROOT)/bin $(ROOT)/lib $(ROOT)/tests/**/sim_build
+
+distclean: clean
+	rm -rf $(ROOT)/.venv
