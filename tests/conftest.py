@@ -9,3 +9,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 # cocotb test files import their shared helpers as `common.*`.
 sys.path.insert(0, str(ROOT / "tests" / "cocotb"))
+
+
+def build_dir() -> Path:
+    """The build tree under test: $HM_BUILD (set by the Makefile) or build/."""
+    import os
+
+    return Path(os.environ.get("HM_BUILD", str(ROOT / "build")))
