@@ -88,6 +88,16 @@ long rtapi_delay_max(void);
 int rtapi_is_simclock(void);
 /* 1 inside a realtime thread of rtapi_app, 0 elsewhere. */
 int rtapi_is_realtime(void);
+/* Under the simulated clock a realtime function may have to wait for a
+ * userspace peer (sampler: for halsampler to drain its FIFO; streamer: for
+ * halstreamer to fill it) and virtual time must not advance meanwhile, which
+ * is what makes a simulated run deterministic.  Such a function loops
+ *     while (!peer_ready && !rtapi_sim_yield()) ;
+ * rtapi_sim_yield() sleeps briefly and returns nonzero when the function must
+ * stop waiting (threads are being stopped, a module is being unloaded, the
+ * session is ending).  On the wall clock it returns nonzero at once, so the
+ * same code drops/overruns exactly like LinuxCNC there. */
+int rtapi_sim_yield(void);
 
 /* ---- module parameters ------------------------------------------------- */
 /*
