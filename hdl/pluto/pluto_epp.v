@@ -88,7 +88,7 @@ module pluto_epp #(
     wire is_rd   = ~write_s;
 
     assign rd_sel = addr_q[4:2];
-    assign rd_stb = start & ~is_addr & is_rd & (addr_q[1:0] == 2'b00);
+    assign rd_stb = start & ~is_addr & is_rd & (addr_q[1:0] == 2'b00) & rd_hit;
 
     reg [7:0] rbyte;
     always @(*) begin

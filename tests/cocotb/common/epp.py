@@ -50,7 +50,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import cocotb
-from cocotb.triggers import Edge, First, Timer
+from cocotb.triggers import First, Timer
 from cocotb.utils import get_sim_time
 
 
@@ -230,7 +230,7 @@ class EppHost:
 
     async def _watch_oe(self) -> None:
         while True:
-            await Edge(self.d_oe)
+            await self.d_oe.value_change
             if self._host_drives and self._oe_active():
                 # Recorded only: raising inside a monitor task would not reach
                 # the caller; the next cycle re-checks and raises.
@@ -241,7 +241,7 @@ class EppHost:
 
     async def _watch_wait(self) -> None:
         while True:
-            await Edge(self.nwait)
+            await self.nwait.value_change
             if not self._in_cycle and self._acked() and _now_ns() > self._grace_until:
                 self.violations.append(
                     f"EPP @{_now_ns():.1f} ns: nWait shows acknowledge while no cycle is running"
@@ -260,7 +260,7 @@ class EppHost:
             rem = deadline - _now_ns()
             if rem <= 0:
                 return False
-            await First(Edge(self.nwait), Timer(max(1, int(rem * 1000)), unit="ps"))
+            await First(self.nwait.value_change, Timer(max(1, int(rem * 1000)), unit="ps"))
         return True
 
     async def _cycle(self, kind: CycleKind, value: int = 0) -> EppCycle:
