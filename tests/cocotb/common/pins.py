@@ -328,6 +328,11 @@ class DutyMeter:
 # quadrature encoder source
 
 
+def _ps(ns: float) -> float:
+    """Round a time in ns to whole picoseconds (the usual sim precision)."""
+    return round(ns * 1000) / 1000
+
+
 class QuadSource:
     """Drives A/B (and optionally Index / IndexMask) like an encoder.
 
@@ -373,13 +378,14 @@ class QuadSource:
         if edge_ns <= 0:
             raise ValueError("edge spacing must be positive")
         step = 1 if counts >= 0 else -1
+        edge_ns, glitch_ns = _ps(edge_ns), _ps(glitch_ns)
         for _ in range(abs(counts)):
             self.edge(step)
             if glitch_prob and self.rng.random() < glitch_prob and glitch_ns * 3 < edge_ns:
-                pre = edge_ns / 3
+                pre = _ps(edge_ns / 3)
                 await Timer(pre, unit="ns")
                 await self.glitch(self.rng.choice(["a", "b"]), glitch_ns)
-                await Timer(edge_ns - pre - glitch_ns, unit="ns")
+                await Timer(_ps(edge_ns - pre - glitch_ns), unit="ns")
             else:
                 await Timer(edge_ns, unit="ns")
 
@@ -390,7 +396,7 @@ class QuadSource:
             raise ValueError(f"no {which} pin on this source")
         old = int(sig.value)
         sig.value = 1 - old
-        await Timer(width_ns, unit="ns")
+        await Timer(_ps(width_ns), unit="ns")
         sig.value = old
         self.glitches += 1
 
@@ -398,5 +404,5 @@ class QuadSource:
         if self.idx is None:
             raise ValueError("no index pin on this source")
         self.idx.value = active
-        await Timer(width_ns, unit="ns")
+        await Timer(_ps(width_ns), unit="ns")
         self.idx.value = 1 - active

@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+//
+// hm2_encoder: one HostMot2 QCounter with timestamp (spec §9.5, version 2).
+//
+// Pins: A, B, Index and IndexMask arrive raw; each goes through a 2-FF
+// synchronizer.  A, B and Index then pass a digital integrator filter
+// sampled at the bank's filter rate: a 4-bit counter moves toward the input
+// level by one per sample and the filtered level changes only when the
+// counter reaches its end stop (3 with CCR bit 11 = 0, 15 with bit 11 = 1),
+// so a pulse shorter than the filter length never gets through.  IndexMask
+// is used synchronized but unfiltered.
+//
+// Count register: bits 15..0 the up/down count, bits 31..16 the TSCount
+// value latched on the clock the count last changed.  Any write clears the
+// count.  CCR: bits 31..16 index-latched count, bits 15..3 control, bits
+// 2..0 filtered Index, B, A.  Bit 15 (sticky quadrature error) is
+// write-1-to-clear as the LinuxCNC driver expects (spec §20); bits 13/12
+// (probe) are plain storage in this probe-less version 2.
+`default_nettype none
+
+module hm2_encoder (
+    input  wire        clk,
+    input  wire        rst,
+    input  wire        sample,     // filter sample tick (bank QFilterRate)
+    input  wire [15:0] ts_count,   // bank TSCount
+    input  wire [15:3] wdata,      // CCR write data (count writes ignore data)
+    input  wire        we_count,
+    input  wire        we_ccr,
+    input  wire        a_pin,
+    input  wire        b_pin,
+    input  wire        idx_pin,
+    input  wire        mask_pin,
+    output wire [31:0] count_rd,
+    output wire [31:0] ccr_rd
+);
+    localparam integer C_ABMASKPOL = 14;
+    localparam integer C_QFILTER   = 11;
+    localparam integer C_UPDOWN    = 10;
+    localparam integer C_USEMASK   = 9;
+    localparam integer C_MASKPOL   = 8;
+    localparam integer C_ABGATE    = 7;
+    localparam integer C_JUSTONCE  = 6;
+    localparam integer C_CLRIDX    = 5;
+    localparam integer C_LATCHIDX  = 4;
+    localparam integer C_IDXPOL    = 3;
+
+    // ---- synchronize, then filter A, B, Index
+    wire [3:0] pins_s;
+    sync_ff #(.WIDTH(4), .STAGES(2)) u_sync (
+        .clk(clk), .rst(rst), .d({mask_pin, idx_pin, b_pin, a_pin}), .q(pins_s)
+    );
+
+    reg  [14:3] ctrl_q;       // CCR bits 14..3 (bit 15 is qerr_q)
+    reg         qerr_q;
+    reg  [11:0] fcnt_q;       // filter integrators [4j+:4]: j=0 A, 1 B, 2 Index
+    reg  [2:0]  filt_q;       // filtered {Index, B, A}
+    reg  [1:0]  prev_q;       // filtered A, B one clock earlier
+    reg         cond_prev_q;  // conditioned index one clock earlier
+    reg  [15:0] count_q;
+    reg  [15:0] stamp_q;
+    reg  [15:0] latch_q;
+
+    wire [3:0] fmax = ctrl_q[C_QFILTER] ? 4'd15 : 4'd3;
+
+    integer j;
+    always @(posedge clk) begin
+        if (rst) begin
+            fcnt_q <= 12'd0;
+            filt_q <= 3'b000;
+        end else if (sample) begin
+            for (j = 0; j < 3; j = j + 1) begin
+                if (pins_s[j]) begin
+                    if ({1'b0, fcnt_q[4*j +: 4]} + 5'd1 >= {1'b0, fmax}) begin
+                        fcnt_q[4*j +: 4] <= fmax;
+                        filt_q[j] <= 1'b1;
+                    end else begin
+                        fcnt_q[4*j +: 4] <= fcnt_q[4*j +: 4] + 4'd1;
+                    end
+                end else begin
+                    if (fcnt_q[4*j +: 4] <= 4'd1) begin
+                        fcnt_q[4*j +: 4] <= 4'd0;
+                        filt_q[j] <= 1'b0;
+                    end else if (fcnt_q[4*j +: 4] > fmax) begin
+                        // filter length shortened while above the new stop
+                        fcnt_q[4*j +: 4] <= fmax - 4'd1;
+                    end else begin
+                        fcnt_q[4*j +: 4] <= fcnt_q[4*j +: 4] - 4'd1;
+                    end
+                end
+            end
+        end
+    end
+
+    // ---- decode
+    wire a = filt_q[0];
+    wire b = filt_q[1];
+    wire idx = filt_q[2];
+    wire a_chg = a ^ prev_q[0];
+    wire b_chg = b ^ prev_q[1];
+
+    reg up, down, qerr_set;
+    always @(*) begin
+        up = 1'b0;
+        down = 1'b0;
+        qerr_set = 1'b0;
+        if (ctrl_q[C_UPDOWN]) begin
+            // up/down counter: A rising edge counts, B gives the direction
+            if (a && !prev_q[0]) begin
+                up = b;
+                down = !b;
+            end
+        end else if (a_chg && b_chg) begin
+            qerr_set = 1'b1;
+        end else if (a_chg) begin
+            up = (a != b);
+            down = (a == b);
+        end else if (b_chg) begin
+            up = (a == b);
+            down = (a != b);
+        end
+    end
+
+    wire mask_ok = !ctrl_q[C_USEMASK] || (pins_s[3] == ctrl_q[C_MASKPOL]);
+    wire ab_ok = !ctrl_q[C_ABGATE] ||
+                 ((a == ctrl_q[C_ABMASKPOL]) && (b == ctrl_q[C_ABMASKPOL]));
+    wire cond = (idx == ctrl_q[C_IDXPOL]) && mask_ok && ab_ok;
+    wire index_event = cond && !cond_prev_q;
+    wire do_clear = index_event && ctrl_q[C_CLRIDX];
+    wire do_latch = index_event && ctrl_q[C_LATCHIDX];
+
+    always @(posedge clk) begin
+        if (rst) begin
+            prev_q      <= 2'b00;
+            cond_prev_q <= 1'b0;
+            count_q     <= 16'd0;
+            stamp_q     <= 16'd0;
+            latch_q     <= 16'd0;
+            ctrl_q      <= 12'd0;
+            qerr_q      <= 1'b0;
+        end else begin
+            prev_q      <= filt_q[1:0];
+            cond_prev_q <= cond;
+
+            if (we_count || do_clear)
+                count_q <= 16'd0;
+            else if (up)
+                count_q <= count_q + 16'd1;
+            else if (down)
+                count_q <= count_q - 16'd1;
+            if (up || down)
+                stamp_q <= ts_count;
+
+            if (do_latch)
+                latch_q <= count_q;
+
+            if (we_ccr)
+                ctrl_q <= wdata[14:3];
+            else if (index_event && ctrl_q[C_JUSTONCE]) begin
+                ctrl_q[C_CLRIDX]   <= 1'b0;
+                ctrl_q[C_LATCHIDX] <= 1'b0;
+                ctrl_q[13]         <= 1'b0;  // LatchOnProbe is one-shot too
+            end
+
+            // sticky; a set in the same clock as the clear wins
+            if (qerr_set)
+                qerr_q <= 1'b1;
+            else if (we_ccr && wdata[15])
+                qerr_q <= 1'b0;
+        end
+    end
+
+    assign count_rd = {stamp_q, count_q};
+    assign ccr_rd = {latch_q, qerr_q, ctrl_q, filt_q};
+endmodule
+
+`default_nettype wire
