@@ -32,6 +32,12 @@
 // IEEE 1284 EPP handshake (what PC ports expect), 0 the inverted pin that
 // spec/pluto.md section 12 reports for the original Pluto-P firmware.
 //
+// The data bus is not passed through a synchronizer: it is captured only at
+// the access clock, which comes 2-3 clocks after the strobe pin fell, and
+// EPP hosts set nWrite and the data before they assert the strobe and hold
+// them until it ends, so the bus is stable for >= 50 ns whenever a
+// flip-flop samples it.  The strobes that qualify it are synchronized.
+//
 // If both strobes are seen at once the cycle is an address cycle.
 // nReset (the port's nInit line) low clears the address register, the low
 // byte latch and the handshake; it does not touch the core's registers.

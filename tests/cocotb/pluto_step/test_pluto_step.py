@@ -147,8 +147,10 @@ async def top_step_rate_and_polarity(dut: Any) -> None:
 async def timing_fields_at_zero_and_max(dut: Any) -> None:
     """steplen/dirtime 0 -> 1 tick (1.6 us); the driver's max (49.6 us,
     31 ticks) is written as 31 and the 4-bit fields keep 15 -> 16 ticks
-    (25.6 us): the spec's section 12 discrepancy, reproduced."""
-    for steplen_ns, dirtime_ns, want in ((0, 0, 1), (49600, 49600, 16), (24000, 24000, 16)):
+    (25.6 us), 30 us = 18 ticks wraps to 2 -> 3 ticks: the spec's section 12
+    discrepancy, reproduced."""
+    for steplen_ns, dirtime_ns, want in ((0, 0, 1), (49600, 49600, 16), (24000, 24000, 16),
+                                         (30000, 30000, 3)):
         host, drv = await start(dut)
         mon = StepMonitor(dut)
         timing = step_timing_word(steplen_ns, dirtime_ns, False)
