@@ -16,6 +16,7 @@
 //   IOPORTS, PORTWIDTH   connectors and pins per connector (IOWidth = product)
 //   NUM_LEDS             LEDs of the board (0 = no LED module)
 //   NUM_STEPGEN, SG_TABLE_WIDTH, NUM_ENCODER, NUM_PWMGEN   module counts
+//   CLOCK_LOW_HZ         ClockLow in Hz (IDROM value; encoder filter reset value)
 //   *_BASE               MD base addresses
 //   IDROM                IDROM image, word k in bits 32k+31..32k
 //   ALT_SRC              per pin, 16 bits: index into mod_out (0 = none)
@@ -35,6 +36,7 @@ module hm2_core #(
     parameter integer SG_TABLE_WIDTH = 2,
     parameter integer NUM_ENCODER    = 0,
     parameter integer NUM_PWMGEN     = 0,
+    parameter integer CLOCK_LOW_HZ   = 33333333,  // ClockLow (encoder filter reset value)
     parameter [15:0]  WD_BASE        = 16'h0C00,
     parameter [15:0]  IO_BASE        = 16'h1000,
     parameter [15:0]  LED_BASE       = 16'h0200,
@@ -120,7 +122,7 @@ module hm2_core #(
         end
 
         if (NUM_ENCODER > 0) begin : g_enc
-            hm2_encoder_bank #(.BASE(ENC_BASE), .NUM(NUM_ENCODER)) u_enc (
+            hm2_encoder_bank #(.BASE(ENC_BASE), .NUM(NUM_ENCODER), .CLOCK_LOW_HZ(CLOCK_LOW_HZ)) u_enc (
                 .clk(clk), .rst(rst), .bus_addr(bus_addr), .bus_wdata(bus_wdata),
                 .bus_we(bus_we), .bus_re(bus_re), .bus_rdata(rd_enc),
                 .enc_a(enc_a), .enc_b(enc_b), .enc_idx(enc_idx), .enc_idxmask(enc_idxmask)

@@ -14,6 +14,7 @@ module hm2_top_localbus #(
     parameter integer SG_TABLE_WIDTH = 2,
     parameter integer NUM_ENCODER    = 0,
     parameter integer NUM_PWMGEN     = 0,
+    parameter integer CLOCK_LOW_HZ   = 33333333,  // ClockLow (encoder filter reset value)
     parameter [15:0]  WD_BASE        = 16'h0C00,
     parameter [15:0]  IO_BASE        = 16'h1000,
     parameter [15:0]  LED_BASE       = 16'h0200,
@@ -54,7 +55,7 @@ module hm2_top_localbus #(
     hm2_core #(
         .IOPORTS(IOPORTS), .PORTWIDTH(PORTWIDTH), .NUM_LEDS(NUM_LEDS),
         .NUM_STEPGEN(NUM_STEPGEN), .SG_TABLE_WIDTH(SG_TABLE_WIDTH),
-        .NUM_ENCODER(NUM_ENCODER), .NUM_PWMGEN(NUM_PWMGEN),
+        .NUM_ENCODER(NUM_ENCODER), .NUM_PWMGEN(NUM_PWMGEN), .CLOCK_LOW_HZ(CLOCK_LOW_HZ),
         .WD_BASE(WD_BASE), .IO_BASE(IO_BASE), .LED_BASE(LED_BASE), .SG_BASE(SG_BASE),
         .ENC_BASE(ENC_BASE), .PWM_BASE(PWM_BASE),
         .IDROM(IDROM), .ALT_SRC(ALT_SRC), .ENC_SRC(ENC_SRC)

@@ -63,6 +63,7 @@ def verilog_include(fw: Firmware) -> str:
         f"localparam integer HM2_SG_TABLE_WIDTH = {fw.stepgen_table_width};",
         f"localparam integer HM2_NUM_ENCODER    = {fw.count('Encoder')};",
         f"localparam integer HM2_NUM_PWMGEN     = {fw.count('PWMGen')};",
+        f"localparam integer HM2_CLOCK_LOW_HZ   = {b.clock_low};",
         f"localparam [15:0]  HM2_WD_BASE        = 16'h{base('Watchdog', 0x0C00):04x};",
         f"localparam [15:0]  HM2_IO_BASE        = 16'h{base('IOPort', 0x1000):04x};",
         f"localparam [15:0]  HM2_LED_BASE       = 16'h{base('LED', 0x0200):04x};",
@@ -81,7 +82,7 @@ def verilog_include(fw: Firmware) -> str:
 
 
 _PARAMS = ("IOPORTS", "PORTWIDTH", "NUM_LEDS", "NUM_STEPGEN", "SG_TABLE_WIDTH", "NUM_ENCODER",
-           "NUM_PWMGEN", "WD_BASE", "IO_BASE", "LED_BASE", "SG_BASE", "ENC_BASE", "PWM_BASE",
+           "NUM_PWMGEN", "CLOCK_LOW_HZ", "WD_BASE", "IO_BASE", "LED_BASE", "SG_BASE", "ENC_BASE", "PWM_BASE",
            "IDROM", "ALT_SRC", "ENC_SRC")
 
 
