@@ -224,6 +224,7 @@ struct hostmot2 {
     hal_bit_t *io_error; /* param storage, hal_malloc'd */
     bool needs_reset;
     bool registered;
+    void *handle; /* struct hm2_funct_handle (HAL memory), see hostmot2.c */
 };
 
 /* ---- messages ---- */

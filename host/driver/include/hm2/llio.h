@@ -87,6 +87,9 @@ struct hm2_llio {
 
     /* Backend-private data. */
     void *priv;
+    /* Owned by the hostmot2 core: the board registered on this llio (set
+     * by hm2_register, cleared by hm2_unregister).  Backends leave it. */
+    void *hm2;
 };
 
 /* Connector text for the pin report: "<connector>-<pin2>", or the llio's
