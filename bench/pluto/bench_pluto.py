@@ -36,7 +36,8 @@ def main() -> int:
     finally:
         out.unlink(missing_ok=True)
 
-    print("EPP traffic per servo cycle (driver read + write), Verilated firmware, pin-level host model")
+    print("EPP traffic per servo cycle (driver read + write), Verilated firmware, "
+          "pin-level host model")
     print(f"  {'firmware':12} {'host pace':22} {'cycles':>14} {'bus time':>10}   "
           f"{'ack latency':>12}  anchor")
     for r in (r for r in rows if r["kind"] == "epp"):
@@ -56,7 +57,8 @@ def main() -> int:
     print(f"  pluto_step.read  : {s['trace_read']}")
     print("Rates measured on the output pins")
     for r in (r for r in rows if r["kind"] == "rate"):
-        print(f"  {r['fw']:12} {r['what']:16} {r['hz'] / 1e3:9.3f} kHz   spec {r['spec_hz'] / 1e3:.3f} kHz"
+        print(f"  {r['fw']:12} {r['what']:16} {r['hz'] / 1e3:9.3f} kHz   "
+              f"spec {r['spec_hz'] / 1e3:.3f} kHz"
               f"   ({100 * (r['hz'] / r['spec_hz'] - 1):+.3f} %)")
     for r in (r for r in rows if r["kind"] == "wdt"):
         print(f"  {r['fw']:12} {'watchdog bite':16} {r['bite_ms']:9.3f} ms    spec 126-127 ticks ="

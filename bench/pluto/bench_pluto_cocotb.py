@@ -44,7 +44,8 @@ async def measure(dut: Any) -> None:
     servo = dut._name == "pluto_servo"
     dut.io_in.value = 0
     name = "pluto_servo" if servo else "pluto_step"
-    for profile, timing in (("fast host", EppTiming()), ("PC pace (1 us/cycle)", EppTiming.pc_isa())):
+    profiles = (("fast host", EppTiming()), ("PC pace (1 us/cycle)", EppTiming.pc_isa()))
+    for profile, timing in profiles:
         host = epp_host(dut, timing=timing)
         if profile == "fast host":
             await start_clock_and_reset(dut)
@@ -52,7 +53,8 @@ async def measure(dut: Any) -> None:
         drv: Any = ServoDriver(host) if servo else StepDriver(host)
         for _ in range(3):
             if servo:
-                wc = await drv.write([servo_pwm_word(0.5)] * 4, servo_ctrl_word(0, False, True, False))
+                ctrl = servo_ctrl_word(0, False, True, False)
+                wc = await drv.write([servo_pwm_word(0.5)] * 4, ctrl)
             else:
                 wc = await drv.write([100] * 4, 0, step_timing_word(0, 0, False))
             rc = await drv.read()

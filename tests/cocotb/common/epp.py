@@ -419,7 +419,12 @@ class EppHost:
 
     # --------------------------------------------- deliberately bad host cycles
     async def abandoned_strobe(
-        self, *, addr: bool = False, write: bool = True, value: int = 0, hold_ns: float | None = None
+        self,
+        *,
+        addr: bool = False,
+        write: bool = True,
+        value: int = 0,
+        hold_ns: float | None = None,
     ) -> None:
         """Assert a strobe and ignore the handshake: keep it for ``hold_ns``
         (None = forever, i.e. return with the strobe still asserted; call

@@ -68,7 +68,8 @@ class Bench:
             d.tick.value = 0
             got = (int(d.pos.value), int(d.step_q.value), int(d.dir_q.value))
             m = self.model
-            assert got == (m.pos, m.step, m.dir), f"vel {vel}: dut {got} model {(m.pos, m.step, m.dir)}"
+            want = (m.pos, m.step, m.dir)
+            assert got == want, f"vel {vel}: dut {got} model {want}"
             self.wave.step.append(got[1])
             self.wave.dir.append(got[2])
             self.wave.pos.append(got[0])
