@@ -99,6 +99,17 @@ int rtapi_is_realtime(void);
  * same code drops/overruns exactly like LinuxCNC there. */
 int rtapi_sim_yield(void);
 
+/* ---- shared memory blocks ---------------------------------------------- */
+/* Named shared-memory blocks for a realtime module and its userspace peer
+ * (sampler/halsampler, streamer/halstreamer), as in LinuxCNC: both sides
+ * call rtapi_shmem_new() with the same key and size, then
+ * rtapi_shmem_getptr().  Blocks are per session (HAL_INSTANCE).  Returns a
+ * handle > 0 or -errno.  The block is removed when its last handle in the
+ * session is deleted. */
+int rtapi_shmem_new(int key, int module_id, unsigned long size);
+int rtapi_shmem_getptr(int handle, void **ptr);
+int rtapi_shmem_delete(int handle, int module_id);
+
 /* ---- module parameters ------------------------------------------------- */
 /*
  * RTAPI_MP_INT(var, "description") declares `var` (an existing variable of
@@ -116,14 +127,14 @@ int rtapi_sim_yield(void);
 
 #define RTAPI_IP_SYMBOL_(x, var) rtapi_info_##x##_##var
 
-#define RTAPI_MP_DECLARE_(var, type, descr)                                        \
+#define RTAPI_MP_DECLARE_(var, mptype, descr)                                      \
     RTAPI_EXPORT __attribute__((used)) void *RTAPI_IP_SYMBOL_(address, var) =     \
         (void *)&(var);                                                            \
-    RTAPI_EXPORT __attribute__((used)) const char *RTAPI_IP_SYMBOL_(type, var) = type; \
+    RTAPI_EXPORT __attribute__((used)) const char *RTAPI_IP_SYMBOL_(type, var) = mptype; \
     RTAPI_EXPORT __attribute__((used)) const char *RTAPI_IP_SYMBOL_(description, var) = descr
 
-#define RTAPI_MP_ARRAY_DECLARE_(var, type, num, descr) \
-    RTAPI_MP_DECLARE_(var, type, descr);                \
+#define RTAPI_MP_ARRAY_DECLARE_(var, mptype, num, descr) \
+    RTAPI_MP_DECLARE_(var, mptype, descr);                \
     RTAPI_EXPORT __attribute__((used)) int RTAPI_IP_SYMBOL_(size, var) = (num)
 
 #define RTAPI_MP_INT(var, descr) RTAPI_MP_DECLARE_(var, RTAPI_MP_TYPE_INT, descr)

@@ -1,0 +1,106 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+#
+# halrun - run a HAL session: start it, run a .hal file (or an interactive
+# halcmd), then stop the threads, unload everything and remove the session.
+# See docs/halrun.md.
+#
+#   halrun [-I] [-S] [halcmd options] [[-f] file.hal]
+#   halrun -U        clean up a session left behind by a crash
+#   halrun -h
+#
+# The session is the one named by HAL_INSTANCE (default 0).
+
+THIS=$(basename "$0")
+BINDIR=$(cd "$(dirname "$(readlink -f "$0")")" && pwd)
+HALCMD="$BINDIR/halcmd"
+
+help() {
+    "$HALCMD" -h
+    cat <<EOF
+
+$THIS usage:
+  $THIS [-I] [-S] [halcmd options] [filename.hal]
+  $THIS -f filename.hal      same as giving the file name
+  $THIS -I                   interactive halcmd (after the file, if any)
+  $THIS -S                   simulated clock (same as HAL_SIMCLOCK=1)
+  $THIS -U                   clean up after a crashed session
+  $THIS -h                   this help
+halcmd options passed on: -e -i INI -k -q -Q -R -s -v -V
+Session: HAL_INSTANCE=${HAL_INSTANCE:-0}
+EOF
+}
+
+wait_rtapi_exit() {
+    # rtapi_app leaves by itself once nothing is loaded.
+    local i
+    for i in $(seq 1 500); do
+        "$HALCMD" --session-rtapi-alive >/dev/null 2>&1 || return 0
+        sleep 0.01
+    done
+    return 1
+}
+
+INTERACTIVE=false
+filename=""
+inifile=""
+args=()
+while getopts "ef:hi:kqsvIRQSUV" opt; do
+    case $opt in
+    h) help; exit 0 ;;
+    U) "$HALCMD" --session-kill >/dev/null 2>&1
+       "$HALCMD" --session-destroy
+       exit 0 ;;
+    f) filename=$OPTARG ;;
+    i) inifile=$OPTARG ;;
+    I) INTERACTIVE=true ;;
+    S) export HAL_SIMCLOCK=1 ;;
+    e|k|q|s|v|R|Q|V) args+=("-$opt") ;;
+    \?) echo ""; echo "For usage try: $THIS -h"; exit 1 ;;
+    esac
+done
+shift $((OPTIND - 1))
+
+if [ $# -gt 1 ]; then
+    echo "$THIS: too many arguments <$*>"
+    exit 1
+fi
+if [ $# -gt 0 ]; then
+    if [ -z "$filename" ]; then
+        filename=$1
+    else
+        echo "$THIS: Error: Specified '-f $1' and also <$filename>"
+        exit 1
+    fi
+fi
+if [ -n "$inifile" ]; then
+    args+=(-i "$inifile")
+fi
+
+state=$("$HALCMD" --session-state 2>/dev/null)
+case "$state" in
+running)
+    echo "$THIS: Realtime already running.  Use 'halrun -U' to stop existing realtime session." 1>&2
+    exit 1 ;;
+stale)
+    echo "$THIS: found a stale HAL session (instance ${HAL_INSTANCE:-0}) left by a crashed run.  Use 'halrun -U' to clean it up." 1>&2
+    exit 1 ;;
+esac
+
+result=0
+if [ -n "$filename" ]; then
+    case $filename in
+    *.hal|*) "$HALCMD" "${args[@]}" -f "$filename"; result=$? ;;
+    esac
+else
+    INTERACTIVE=true
+fi
+if $INTERACTIVE; then
+    "$HALCMD" "${args[@]}" -kf
+fi
+
+"$HALCMD" stop || result=$?
+"$HALCMD" unload all || result=$?
+wait_rtapi_exit
+"$HALCMD" --session-destroy
+exit $result
