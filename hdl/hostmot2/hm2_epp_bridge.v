@@ -18,18 +18,19 @@
 //
 // Handshake: the strobes and nWrite pass a 2-FF synchronizer, then a glitch
 // filter (FILTER equal samples to change state), so pulses shorter than
-// about FILTER clocks are ignored.  The access happens when the filtered
+// FILTER-1 clocks are always ignored (40 ns at 50 MHz with FILTER = 3).  The access happens when the filtered
 // strobe becomes active; the read byte is driven one clock before nWait
-// goes high (acknowledge); acknowledge and drive end when the filtered
-// strobe is released, and the address increments then.  At 50 MHz this
-// acknowledges about 8 clocks (160-180 ns) after the strobe pin with
-// FILTER = 2 (stock firmware: about 400 ns).
+// goes high (acknowledge).  When the filtered strobe is released the bus
+// drive ends, the address increments, and one clock later nWait shows ready
+// again.  At 50 MHz with FILTER = 3 a write is acknowledged 9-10 clocks
+// (180-200 ns) after the strobe pin, a word-starting read 2 clocks later
+// (stock firmware: about 400 ns).
 // Nothing waits for the host: a strobe released early (host timeout) still
 // completes the cycle and leaves the bridge ready for the next one.
 `default_nettype none
 
 module hm2_epp_bridge #(
-    parameter integer FILTER = 2  // 2..8 equal samples to change state
+    parameter integer FILTER = 3  // 2..8 equal samples to change state
 ) (
     input  wire        clk,
     input  wire        rst,
@@ -80,7 +81,7 @@ module hm2_epp_bridge #(
 
     // ---- cycle state machine
     localparam [2:0] S_IDLE = 3'd0, S_ACCESS = 3'd1, S_READ = 3'd2, S_CAPTURE = 3'd3,
-                     S_DRIVE = 3'd4, S_ACK = 3'd5;
+                     S_DRIVE = 3'd4, S_ACK = 3'd5, S_RELEASE = 3'd6;
     localparam [15:0] RECONFIG_ADDR = 16'h7F7F;
     localparam [7:0]  RECONFIG_DATA = 8'h5A;
 
@@ -183,14 +184,19 @@ module hm2_epp_bridge #(
                 end
                 S_ACK: begin
                     if (!stb) begin
-                        epp_nwait <= 1'b0;
-                        epp_d_oe  <= 1'b0;
-                        state_q   <= S_IDLE;
+                        // Let go of the bus one clock before showing "ready",
+                        // so the host never sees us drive when it may.
+                        epp_d_oe <= 1'b0;
+                        state_q  <= S_RELEASE;
                         if (!is_addr_q && addr_q[15])
                             addr_q[14:0] <= addr_q[14:0] + 15'd1;
                     end else begin
                         epp_nwait <= 1'b1;
                     end
+                end
+                S_RELEASE: begin
+                    epp_nwait <= 1'b0;
+                    state_q   <= S_IDLE;
                 end
                 default: state_q <= S_IDLE;
             endcase
