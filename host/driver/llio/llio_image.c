@@ -133,6 +133,45 @@ void hm2_image_llio_set_queued(struct hm2_image_llio *im, int on)
     im->llio.send_queued_writes = on ? im_send_queued_writes : NULL;
 }
 
+static void synthesize_id_block(struct hm2_image_llio *im)
+{
+    hm2_image_put32(im, 0x100, 0x55AACAFEu);
+    hm2_image_put32(im, 0x104, 0x54534F48u); /* "HOST" */
+    hm2_image_put32(im, 0x108, 0x32544F4Du); /* "MOT2" */
+    hm2_image_put32(im, 0x10C, 0x400u);
+}
+
+/* Lines of 1..8 hex digits; returns the word count, or -1 if the file is
+ * not in that form. */
+static int parse_hex_words(const uint8_t *buf, size_t len, uint32_t *words, int max)
+{
+    int n = 0;
+    size_t i = 0;
+    while (i < len) {
+        uint32_t w = 0;
+        int digits = 0;
+        while (i < len && buf[i] != '\n' && buf[i] != '\r') {
+            int c = buf[i], v;
+            if (c >= '0' && c <= '9') v = c - '0';
+            else if (c >= 'a' && c <= 'f') v = c - 'a' + 10;
+            else if (c >= 'A' && c <= 'F') v = c - 'A' + 10;
+            else return -1;
+            if (++digits > 8)
+                return -1;
+            w = w << 4 | (uint32_t)v;
+            i++;
+        }
+        while (i < len && (buf[i] == '\n' || buf[i] == '\r'))
+            i++;
+        if (digits == 0)
+            continue;
+        if (n >= max)
+            return -1;
+        words[n++] = w;
+    }
+    return n;
+}
+
 int hm2_image_llio_load(struct hm2_image_llio *im, const char *path, char *err, size_t errlen)
 {
     uint8_t *buf;
@@ -143,18 +182,25 @@ int hm2_image_llio_load(struct hm2_image_llio *im, const char *path, char *err, 
                  r == -EFBIG ? "larger than 64 KiB" : strerror(-r));
         return r;
     }
-    if (len == HM2_IMAGE_SIZE) {
+    uint32_t words[256];
+    int nwords = parse_hex_words(buf, len, words, 256);
+    if (nwords > 0) {
+        /* hm2gen's .idrom.hex: one 32-bit IDROM word per line */
+        memset(im->mem, 0, sizeof(im->mem));
+        for (int i = 0; i < nwords; i++)
+            hm2_image_put32(im, 0x400u + 4u * (uint32_t)i, words[i]);
+        synthesize_id_block(im);
+    } else if (len == HM2_IMAGE_SIZE) {
         memcpy(im->mem, buf, len);
     } else if (len == 1024) {
         memset(im->mem, 0, sizeof(im->mem));
         memcpy(im->mem + 0x400, buf, len);
-        hm2_image_put32(im, 0x100, 0x55AACAFEu);
-        hm2_image_put32(im, 0x104, 0x54534F48u); /* "HOST" */
-        hm2_image_put32(im, 0x108, 0x32544F4Du); /* "MOT2" */
-        hm2_image_put32(im, 0x10C, 0x400u);
+        synthesize_id_block(im);
     } else {
         snprintf(err, errlen,
-                 "image %s is %zu bytes; expected 65536 (register space) or 1024 (IDROM)", path,
+                 "image %s is %zu bytes; expected 65536 (register space), 1024 (IDROM) or an "
+                 "IDROM hex file (one 32-bit word per line, at most 256)",
+                 path,
                  len);
         r = -EINVAL;
     }

@@ -295,7 +295,7 @@ static void test_firmware_loader(void)
     char err[200];
     snprintf(path, sizeof(path), "%s/hm2/5i20/GOOD.BIT", dir);
     CHECK_EQ_INT(hm2_image_llio_load(&im, path, err, sizeof(err)), -EINVAL);
-    CHECK(strstr(err, "expected 65536 (register space) or 1024 (IDROM)") != NULL);
+    CHECK(strstr(err, "expected 65536 (register space), 1024 (IDROM) or an IDROM hex file") != NULL);
     CHECK(hm2_image_llio_load(&im, "/nonexistent/x", err, sizeof(err)) < 0);
 
     char cmd[300];

@@ -1,0 +1,241 @@
+/* SPDX-License-Identifier: GPL-2.0-or-later */
+/*
+ * hm2pinout - print a HostMot2 board's pinout without a HAL session: the
+ * same lines the hostmot2 driver logs at load (IDROM summary, module
+ * instances, per-pin usage for a config string), or a .PIN-style listing
+ * of the firmware.  Reads the IDROM over an llio backend; see
+ * docs/hm2pinout.md.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hm2/boards.h"
+#include "hm2/hm2.h"
+#include "hm2/llio_image.h"
+
+struct opts {
+    const char *board;
+    int index;
+    const char *config;
+    int pin_file;
+    int verbose;
+    int no_prefix;
+    const char *source;
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: hm2pinout [options] SOURCE\n"
+            "  SOURCE             image:FILE or FILE: a register image (65536 bytes)\n"
+            "                     or an IDROM image (1024 bytes)\n"
+            "  -b, --board NAME   board whose connectors to use (default 5i20); -b list\n"
+            "  -n, --index N      board number in the HAL prefix (default 0)\n"
+            "  -c, --config STR   hostmot2 config string (num_encoders=..., ...)\n"
+            "  -p, --pin-file     print a .PIN-style listing of the firmware instead\n"
+            "  -v, --verbose      also print the IDROM header and module descriptors\n"
+            "  -s, --short        omit the \"hm2/<board>: \" prefix\n"
+            "  -h, --help\n");
+}
+
+struct sink {
+    int no_prefix;
+    int show_info;
+    int quiet; /* only errors and warnings */
+};
+
+static void out_sink(void *ctx, int level, const char *line)
+{
+    struct sink *s = ctx;
+    if (level == HM2_DBG || (level == HM2_INFO && !s->show_info))
+        return;
+    if (s->quiet && (level == HM2_PRINT || level == HM2_INFO))
+        return;
+    FILE *f = (level == HM2_ERR || level == HM2_WARN) ? stderr : stdout;
+    if (s->no_prefix && f == stdout) {
+        const char *colon = strstr(line, ": ");
+        if (colon && strncmp(line, "hm2", 3) == 0)
+            line = colon + 2;
+    }
+    fprintf(f, "%s\n", line);
+}
+
+/* Backends reachable from this tool: each opens an llio for a SOURCE
+ * string.  Only register images for now; socket/PCI/EPP backends plug in
+ * here (see docs/llio.md). */
+static int open_image(const char *arg, const struct hm2_board_info *b, int index,
+                      struct hm2_image_llio *im)
+{
+    char name[32], err[256];
+    snprintf(name, sizeof(name), "hm2_%s.%d", b->name, index);
+    hm2_image_llio_init(im, name);
+    hm2_image_llio_set_board(im, b, index);
+    im->llio.program_fpga = NULL; /* never program anything */
+    im->llio.reset = NULL;
+    int r = hm2_image_llio_load(im, arg, err, sizeof(err));
+    if (r)
+        fprintf(stderr, "hm2pinout: %s\n", err);
+    return r;
+}
+
+static const char *pin_func_name(const struct hm2_pin *p, char *buf, size_t len)
+{
+    if (p->sec_tag == 0)
+        return "None";
+    const char *n = hm2_get_general_function_name(p->sec_tag);
+    if (n)
+        return n;
+    snprintf(buf, len, "(unknown-gtag-%d)", p->sec_tag);
+    return buf;
+}
+
+/* A .PIN-style listing of everything the firmware has (not limited by the
+ * config string). */
+static void print_pin_file(hostmot2_t *hm2)
+{
+    const struct hm2_idrom *id = &hm2->idrom;
+    printf("Configuration Name: HOSTMOT2\n\n");
+    printf("General configuration information:\n\n");
+    printf("  BaseClock Frequency: %u Hz\n", id->clock_low);
+    printf("  ClockHigh Frequency: %u Hz\n", id->clock_high);
+    printf("  IO Width: %u\n", id->io_width);
+    printf("  IO Ports: %u\n", id->io_ports);
+    printf("  PortWidth: %u\n\n", id->port_width);
+    printf("Modules in configuration:\n\n");
+    for (int i = 0; i < hm2->num_mds; i++) {
+        const struct hm2_md *md = &hm2->md[i];
+        const char *n = hm2_get_general_function_name(md->gtag);
+        char unk[32];
+        if (!n) {
+            snprintf(unk, sizeof(unk), "(unknown-gtag-%d)", md->gtag);
+            n = unk;
+        }
+        printf("  Module: %s\n", n);
+        printf("  There are %d of %s in configuration\n", md->instances, n);
+        printf("  Version: %d\n", md->version);
+        printf("  Registers: %d\n", md->num_registers);
+        printf("  BaseAddress: %04X\n", md->base_address);
+        printf("  ClockFrequency: %.3f MHz\n", md->clock_freq / 1e6);
+        printf("  Register Stride: %u bytes\n", md->register_stride);
+        printf("  Instance Stride: %u bytes\n\n", md->instance_stride);
+    }
+    printf("Configuration pin-out:\n");
+    int width = (int)id->port_width;
+    for (int port = 0; port < (int)id->io_ports; port++) {
+        const char *conn = hm2->llio->ioport_connector_name[port];
+        printf("\nIO Connections for %s\n", conn ? conn : "??");
+        printf("Pin#    I/O     Pri. func    Sec. func       Chan      Pin func        Pin Dir\n\n");
+        for (int b = 0; b < width; b++) {
+            int i = port * width + b;
+            const struct hm2_pin *p = &hm2->pin[i];
+            char cbuf[64], fbuf[32], nbuf[32];
+            const char *cname = hm2_llio_pin_name(hm2->llio, i, cbuf, sizeof(cbuf));
+            const char *pin = cname ? strrchr(cname, '-') : NULL;
+            const char *pn = pin ? pin + 1 : (cname ? cname : "?");
+            if (p->sec_tag == 0) {
+                printf("%-8s%-8d%-13s%-16s\n", pn, i, "IOPort", "None");
+                continue;
+            }
+            struct hm2_pin copy = *p;
+            copy.unused = false;
+            char chan[8];
+            if (p->sec_unit & 0x80)
+                snprintf(chan, sizeof(chan), "Global");
+            else
+                snprintf(chan, sizeof(chan), "%d", p->sec_unit);
+            printf("%-8s%-8d%-13s%-16s%-10s%-16s%s\n", pn, i, "IOPort",
+                   pin_func_name(p, fbuf, sizeof(fbuf)), chan,
+                   hm2_get_pin_secondary_name(&copy, nbuf, sizeof(nbuf)),
+                   (p->sec_pin & 0x80) ? "(Out)" : "(In)");
+        }
+    }
+}
+
+int main(int argc, char **argv)
+{
+    struct opts o = {"5i20", 0, NULL, 0, 0, 0, NULL};
+    static const struct option lopts[] = {
+        {"board", required_argument, 0, 'b'}, {"index", required_argument, 0, 'n'},
+        {"config", required_argument, 0, 'c'}, {"pin-file", no_argument, 0, 'p'},
+        {"verbose", no_argument, 0, 'v'},     {"short", no_argument, 0, 's'},
+        {"help", no_argument, 0, 'h'},        {0, 0, 0, 0}};
+    int c;
+    while ((c = getopt_long(argc, argv, "b:n:c:pvsh", lopts, NULL)) != -1) {
+        switch (c) {
+        case 'b': o.board = optarg; break;
+        case 'n': {
+            char *end;
+            long v = strtol(optarg, &end, 10);
+            if (*end || v < 0 || v > 99) {
+                fprintf(stderr, "hm2pinout: bad board index '%s' (0..99)\n", optarg);
+                return 2;
+            }
+            o.index = (int)v;
+            break;
+        }
+        case 'c': o.config = optarg; break;
+        case 'p': o.pin_file = 1; break;
+        case 'v': o.verbose = 1; break;
+        case 's': o.no_prefix = 1; break;
+        case 'h': usage(stdout); return 0;
+        default: usage(stderr); return 2;
+        }
+    }
+    if (strcmp(o.board, "list") == 0) {
+        for (int i = 0; hm2_board_at(i); i++) {
+            const struct hm2_board_info *b = hm2_board_at(i);
+            printf("%-10s %d x %d pins, FPGA %s\n", b->name, b->num_connectors,
+                   b->pins_per_connector, b->fpga_part[0] ? b->fpga_part : "(flash)");
+        }
+        return 0;
+    }
+    if (optind != argc - 1) {
+        usage(stderr);
+        return 2;
+    }
+    o.source = argv[optind];
+    const struct hm2_board_info *b = hm2_board_lookup(o.board);
+    if (!b) {
+        fprintf(stderr, "hm2pinout: unknown board '%s' (hm2pinout -b list shows them)\n", o.board);
+        return 2;
+    }
+    const char *path = o.source;
+    if (strncmp(path, "image:", 6) == 0) {
+        path += 6;
+    } else if (strchr(path, ':') && strncmp(path, "/", 1) != 0) {
+        fprintf(stderr, "hm2pinout: unknown source '%s' (only image:FILE so far)\n", o.source);
+        return 2;
+    }
+    struct hm2_image_llio *im = malloc(sizeof(*im));
+    if (!im) {
+        fprintf(stderr, "hm2pinout: out of memory\n");
+        return 1;
+    }
+    int rc = 1;
+    if (open_image(path, b, o.index, im))
+        goto out;
+    struct sink s = {o.no_prefix, 1, o.pin_file && !o.verbose};
+    struct hm2_options hopts = {{o.verbose, o.verbose, 0, 0}, NULL};
+    int err;
+    hostmot2_t *hm2 = hm2_probe(&im->llio, o.config, &hopts, out_sink, &s, &err);
+    if (!hm2) {
+        fprintf(stderr, "hm2pinout: %s: not a usable HostMot2 image for a %s (%s)\n", path,
+                b->name, strerror(-err));
+        goto out;
+    }
+    if (o.pin_file) {
+        print_pin_file(hm2);
+    } else {
+        hm2_print_modules(hm2);
+        hm2_print_pin_usage(hm2);
+    }
+    hm2_free(hm2);
+    rc = 0;
+out:
+    free(im);
+    return rc;
+}
