@@ -314,6 +314,30 @@ async def wedged_host_does_not_stop_the_firmware(dut: Any) -> None:
     assert b.host.status == 0
 
 
+@cocotb.test()
+async def dead_board_sets_communication_error(dut: Any) -> None:
+    """A board that does not answer (held in reset, as while unconfigured):
+    the first 32-bit read times out (~10 us per cycle), the driver's
+    communication-error path counts it, clears the timeout and stops; the
+    write path then sends nothing (spec section 9)."""
+    b = Board(dut)
+    await b.start()
+    dut.rst.value = 1
+    cycles = await b.drv.read()
+    assert [c.timeout for c in cycles] == [True] * 5  # A(00) + 4 reads, then stop
+    assert b.drv.communication_error == 1 and b.host.status == 0
+    assert await b.drv.write([servo_pwm_word(0.5)] * 4, 0x3FF) == []
+    # Recovery as the user does it: reset the parameter, board alive again.
+    dut.rst.value = 0
+    await ClockCycles(dut.clk, 10)
+    b.drv.communication_error = 0
+    await b.drv.write([0] * 4, 0x155)
+    await ClockCycles(dut.clk, 4)
+    assert b.pins() & 0x3FF == 0x155
+    cycles = await b.drv.read()
+    assert len(cycles) == 21 and not any(c.timeout for c in cycles)
+
+
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_pluto_servo(sim: str) -> None:
     run(sim=sim, toplevel="pluto_servo", sources=SOURCES, test_module="test_pluto_servo",
