@@ -6,12 +6,15 @@
  *
  * The corner cases follow what 2.9 produces (checked with its halsampler):
  * -0.0 gives out 0.0 and sign FALSE; NaN takes the "negative" branch (sign
- * TRUE, out = -NaN) while is-positive and is-negative are both FALSE.
+ * TRUE, out = -NaN) while is-positive and is-negative are both FALSE;
+ * is-positive/is-negative need |in| > 1e-6.
  * See docs/abs.md.
  */
 #include <math.h>
 
 #include "hm_simple.h"
+
+#define ABS_DEADBAND 0.000001
 
 typedef struct {
     hal_float_t *in;
@@ -33,8 +36,10 @@ static void abs_update(void *arg, long period)
         *p->sign = 1;
         *p->out = -in;
     }
-    *p->is_positive = in > 0.0;
-    *p->is_negative = in < 0.0;
+    /* 2.9 reports a sign only beyond +-1e-6 (checked on it: 1e-6 -> FALSE,
+     * 1.1e-6 -> TRUE), a deadband its man page does not mention */
+    *p->is_positive = in > ABS_DEADBAND;
+    *p->is_negative = in < -ABS_DEADBAND;
 }
 
 static const hm_item_t abs_pins[] = {

@@ -14,15 +14,19 @@
  * 2.9 made them pins, which is what a HAL file written today expects.
  *
  * Each period the phase (0 <= phase < 1, in cycles) advances by
- * frequency * period; a frequency above the Nyquist limit (0.5 cycles per
- * period) is lowered to it, writing the limited value back to the
- * frequency pin, as 2.9 does.  Outputs, with a = amplitude and o = offset:
+ * frequency * period and wraps at 1; a frequency above the Nyquist limit
+ * (0.5 cycles per period) is lowered to it, writing the limited value back
+ * to the frequency pin; reset holds the phase at 1/2.  Outputs, with
+ * a = amplitude and o = offset (the conventions 2.9 produces, checked
+ * sample by sample against it):
  *   sawtooth = (2 phase - 1) a + o
- *   triangle = (4 phase - 1) a + o      for phase < 1/2
- *              (3 - 4 phase) a + o      otherwise
- *   square   = +a + o, clock TRUE       for phase < 1/2
- *              -a + o, clock FALSE      otherwise
- *   sine     = sin(2 pi phase) a + o,   cosine = cos(2 pi phase) a + o
+ *   triangle = (1 - 4 phase) a + o      for phase <= 1/2
+ *              (4 phase - 3) a + o      otherwise
+ *   square   = -a + o, clock FALSE      for phase <= 1/2
+ *              +a + o, clock TRUE       otherwise
+ *   sine     = sin(w phase) a + o,   cosine = cos(w phase) a + o
+ * where w = 6.2831854, the 8-digit value of 2 pi that 2.9 uses (visible as
+ * sine = -4.6e-8 at phase 1/2 instead of +1.2e-16).
  * See docs/siggen.md.
  */
 #include <errno.h>
@@ -33,7 +37,7 @@
 #include "hm_simple.h"
 
 #define SIGGEN_MAX_CHAN 16
-#define SIGGEN_TWO_PI 6.28318530717958647692
+#define SIGGEN_TWO_PI 6.2831854 /* sic, see above */
 
 typedef struct {
     hal_float_t *square;
@@ -50,16 +54,16 @@ typedef struct {
 } siggen_t;
 
 static int num_chan;
-RTAPI_MP_INT(num_chan, "number of channels (default 1, at most 16)");
+HM_MP_INT(num_chan, "number of channels (default 1, at most 16)");
 static char *names[SIGGEN_MAX_CHAN];
-RTAPI_MP_ARRAY_STRING(names, SIGGEN_MAX_CHAN, "names of the channels");
+HM_MP_ARRAY_STRING(names, SIGGEN_MAX_CHAN, "names of the channels");
 static int comp_id;
 
 static void siggen_update(void *arg, long period)
 {
     siggen_t *g = arg;
     if (*g->reset) {
-        g->phase = 0.0;
+        g->phase = 0.5;
     } else {
         double seconds = period * 1e-9;
         double step = *g->frequency * seconds;
@@ -76,10 +80,9 @@ static void siggen_update(void *arg, long period)
     double o = *g->offset;
     double ph = g->phase;
     *g->sawtooth = (ph * 2.0 - 1.0) * a + o;
-    double tri = ph * 4.0;
-    tri = (tri < 2.0) ? tri - 1.0 : 3.0 - tri;
+    double tri = (ph <= 0.5) ? 1.0 - ph * 4.0 : ph * 4.0 - 3.0;
     *g->triangle = tri * a + o;
-    if (ph < 0.5) {
+    if (ph > 0.5) {
         *g->square = a + o;
         *g->clock = 1;
     } else {

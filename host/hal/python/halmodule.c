@@ -850,7 +850,8 @@ static int info_cb(const char *name, void *vctx)
             for (int i = 0; i < n && i < 64; i++) {
                 hal_q_pin_t p;
                 if (hal_q_pin(pins[i], &p) == 0 && p.dir == HAL_OUT) {
-                    snprintf(driver, sizeof(driver), "%s", pins[i]);
+                    memcpy(driver, pins[i], sizeof(driver));
+                    driver[HAL_NAME_LEN] = '\0';
                     break;
                 }
             }
