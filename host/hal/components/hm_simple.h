@@ -14,16 +14,15 @@
 
 #include "hal.h"
 #include "hm_comp.h"
-#include "hm_mp.h"
 #include "rtapi.h"
 
 /* Module parameters and the component id are the only module-level state
  * (rtapi_app_exit needs the id); instance state lives in HAL memory. */
 #define HM_SIMPLE_COMPONENT(desc_, description_)                                      \
     static int count;                                                                 \
-    HM_MP_INT(count, "number of instances (default 1)");                           \
+    RTAPI_MP_INT(count, "number of instances (default 1)");                           \
     static char *names[HM_COMP_MAX_NAMES];                                            \
-    HM_MP_ARRAY_STRING(names, HM_COMP_MAX_NAMES, "names of instances");            \
+    RTAPI_MP_ARRAY_STRING(names, HM_COMP_MAX_NAMES, "names of instances");            \
     static int hm_comp_id_;                                                           \
     int rtapi_app_main(void) { return hm_comp_load(&(desc_), count, names, &hm_comp_id_); } \
     void rtapi_app_exit(void) { hal_exit(hm_comp_id_); }                              \

@@ -34,16 +34,15 @@
 #include <string.h>
 
 #include "hal.h"
-#include "hm_mp.h"
 #include "hm_stream.h"
 #include "rtapi.h"
 
 #define MAX_CHAN HM_STREAM_MAX_CHAN
 
 static int depth[MAX_CHAN];
-HM_MP_ARRAY_INT(depth, MAX_CHAN, "fifo depth (samples) of each channel");
+RTAPI_MP_ARRAY_INT(depth, MAX_CHAN, "fifo depth (samples) of each channel");
 static char *cfg[MAX_CHAN];
-HM_MP_ARRAY_STRING(cfg, MAX_CHAN, "config string of each channel (b f s u)");
+RTAPI_MP_ARRAY_STRING(cfg, MAX_CHAN, "config string of each channel (b f s u)");
 
 typedef struct {
     hal_bit_t *enable;

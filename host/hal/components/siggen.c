@@ -54,9 +54,9 @@ typedef struct {
 } siggen_t;
 
 static int num_chan;
-HM_MP_INT(num_chan, "number of channels (default 1, at most 16)");
+RTAPI_MP_INT(num_chan, "number of channels (default 1, at most 16)");
 static char *names[SIGGEN_MAX_CHAN];
-HM_MP_ARRAY_STRING(names, SIGGEN_MAX_CHAN, "names of the channels");
+RTAPI_MP_ARRAY_STRING(names, SIGGEN_MAX_CHAN, "names of the channels");
 static int comp_id;
 
 static void siggen_update(void *arg, long period)
