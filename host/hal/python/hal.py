@@ -41,9 +41,6 @@ class _ItemWrap:
     def __init__(self, item):
         self._item = item
 
-    def __repr__(self):
-        return repr(self._item)
-
     name = property(lambda s: s._item.get_name())
     type = property(lambda s: s._item.get_type())
     dir = property(lambda s: s._item.get_dir())

@@ -551,17 +551,26 @@ static PyObject *comp_getpins(CompObject *c, PyObject *unused)
     PyObject *d = PyDict_New();
     if (d == NULL)
         return NULL;
-    PyObject *k, *v;
-    Py_ssize_t pos = 0;
-    while (PyDict_Next(c->items, &pos, &k, &v)) {
-        PyObject *val = item_get((ItemObject *)v, NULL);
+    /* sorted by name, as 2.9 returns them */
+    PyObject *keys = PyDict_Keys(c->items);
+    if (keys == NULL || PyList_Sort(keys) < 0) {
+        Py_XDECREF(keys);
+        Py_DECREF(d);
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < PyList_GET_SIZE(keys); i++) {
+        PyObject *k = PyList_GET_ITEM(keys, i);
+        PyObject *v = PyDict_GetItem(c->items, k);
+        PyObject *val = v ? item_get((ItemObject *)v, NULL) : NULL;
         if (val == NULL || PyDict_SetItem(d, k, val) < 0) {
             Py_XDECREF(val);
+            Py_DECREF(keys);
             Py_DECREF(d);
             return NULL;
         }
         Py_DECREF(val);
     }
+    Py_DECREF(keys);
     return d;
 }
 
@@ -680,7 +689,7 @@ static PyObject *py_component_exists(PyObject *self, PyObject *args)
 {
     const char *name;
     (void)self;
-    if (!PyArg_ParseTuple(args, "s:component_exists", &name) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "s", &name) || attach_or_raise() < 0)
         return NULL;
     return PyBool_FromLong(hal_q_component_exists(name) > 0);
 }
@@ -689,7 +698,7 @@ static PyObject *py_component_is_ready(PyObject *self, PyObject *args)
 {
     const char *name;
     (void)self;
-    if (!PyArg_ParseTuple(args, "s:component_is_ready", &name) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "s", &name) || attach_or_raise() < 0)
         return NULL;
     return PyBool_FromLong(hal_q_component_ready(name) > 0);
 }
@@ -705,7 +714,7 @@ static PyObject *py_new_sig(PyObject *self, PyObject *args)
     const char *name;
     int type;
     (void)self;
-    if (!PyArg_ParseTuple(args, "si:new_sig", &name, &type) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "si", &name, &type) || attach_or_raise() < 0)
         return NULL;
     if (!valid_type(type)) {
         PyErr_SetString(PyExc_RuntimeError, "not a valid HAL signal type");
@@ -718,7 +727,7 @@ static PyObject *py_connect(PyObject *self, PyObject *args)
 {
     const char *pin, *sig;
     (void)self;
-    if (!PyArg_ParseTuple(args, "ss:connect", &pin, &sig) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "ss", &pin, &sig) || attach_or_raise() < 0)
         return NULL;
     return PyBool_FromLong(hal_link(pin, sig) != 0);
 }
@@ -727,7 +736,7 @@ static PyObject *py_disconnect(PyObject *self, PyObject *args)
 {
     const char *pin;
     (void)self;
-    if (!PyArg_ParseTuple(args, "s:disconnect", &pin) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "s", &pin) || attach_or_raise() < 0)
         return NULL;
     return PyBool_FromLong(hal_unlink(pin) != 0);
 }
@@ -737,7 +746,7 @@ static PyObject *py_pin_has_writer(PyObject *self, PyObject *args)
     const char *pin;
     hal_q_pin_t p;
     (void)self;
-    if (!PyArg_ParseTuple(args, "s:pin_has_writer", &pin) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "s", &pin) || attach_or_raise() < 0)
         return NULL;
     if (hal_q_pin(pin, &p) < 0) {
         PyErr_Format(PyExc_NameError, "Pin `%s' does not exist", pin);
@@ -752,7 +761,7 @@ static PyObject *py_get_value(PyObject *self, PyObject *args)
     hal_q_pin_t p;
     hal_q_sig_t s;
     (void)self;
-    if (!PyArg_ParseTuple(args, "s:get_value", &name) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "s", &name) || attach_or_raise() < 0)
         return NULL;
     if (hal_q_pin(name, &p) == 0 || hal_q_param(name, &p) == 0)
         return value_to_py(p.type, &p.value);
@@ -768,7 +777,7 @@ static PyObject *py_set_p(PyObject *self, PyObject *args)
     hal_q_pin_t p;
     char err[256];
     (void)self;
-    if (!PyArg_ParseTuple(args, "ss:set_p", &name, &value) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "ss", &name, &value) || attach_or_raise() < 0)
         return NULL;
     if (hal_q_pin(name, &p) == 0) {
         if (p.dir == HAL_OUT) {
@@ -788,9 +797,8 @@ static PyObject *py_set_p(PyObject *self, PyObject *args)
         PyErr_SetString(PyExc_RuntimeError, "pin not found");
         return NULL;
     }
+    /* 2.9 reports a bad value only through the return value */
     int r = hal_q_setp(name, value, err, sizeof(err));
-    if (r < 0)
-        fprintf(stderr, "HAL: ERROR: %s\n", err);
     return PyBool_FromLong(r != 0);
 }
 
@@ -800,7 +808,7 @@ static PyObject *py_set_s(PyObject *self, PyObject *args)
     hal_q_sig_t s;
     char err[256];
     (void)self;
-    if (!PyArg_ParseTuple(args, "ss:set_s", &name, &value) || attach_or_raise() < 0)
+    if (!PyArg_ParseTuple(args, "ss", &name, &value) || attach_or_raise() < 0)
         return NULL;
     if (hal_q_sig(name, &s) < 0) {
         PyErr_SetString(PyExc_RuntimeError, "signal not found");
@@ -811,8 +819,6 @@ static PyObject *py_set_s(PyObject *self, PyObject *args)
         return NULL;
     }
     int r = hal_q_sets(name, value, err, sizeof(err));
-    if (r < 0)
-        fprintf(stderr, "HAL: ERROR: %s\n", err);
     return PyBool_FromLong(r != 0);
 }
 
@@ -869,12 +875,19 @@ static int info_cb(const char *name, void *vctx)
             Py_DECREF(d);
             return 0;
         }
-        if (add_info(d, "NAME", PyUnicode_FromString(name)) < 0 ||
-            add_info(d, "VALUE", value_to_py(p.type, &p.value)) < 0 ||
-            add_info(d, "DIRECTION", PyLong_FromLong(p.dir)) < 0)
+        /* key order as 2.9: pins NAME VALUE DIRECTION TYPE, params NAME
+         * DIRECTION VALUE */
+        if (add_info(d, "NAME", PyUnicode_FromString(name)) < 0)
             goto fail;
-        if (ctx->kind == HAL_Q_PIN && add_info(d, "TYPE", PyLong_FromLong(p.type)) < 0)
+        if (ctx->kind == HAL_Q_PIN) {
+            if (add_info(d, "VALUE", value_to_py(p.type, &p.value)) < 0 ||
+                add_info(d, "DIRECTION", PyLong_FromLong(p.dir)) < 0 ||
+                add_info(d, "TYPE", PyLong_FromLong(p.type)) < 0)
+                goto fail;
+        } else if (add_info(d, "DIRECTION", PyLong_FromLong(p.dir)) < 0 ||
+                   add_info(d, "VALUE", value_to_py(p.type, &p.value)) < 0) {
             goto fail;
+        }
     }
     if (PyList_Append(ctx->list, d) < 0)
         goto fail;
@@ -933,7 +946,7 @@ static PyObject *py_set_msg_level(PyObject *self, PyObject *args)
 {
     int level;
     (void)self;
-    if (!PyArg_ParseTuple(args, "i:set_msg_level", &level))
+    if (!PyArg_ParseTuple(args, "i", &level))
         return NULL;
     if (level < RTAPI_MSG_NONE || level > RTAPI_MSG_ALL) {
         PyErr_Format(PyExc_RuntimeError, "invalid message level %d (%d to %d)", level,
