@@ -136,6 +136,15 @@ int hm2_config_parse(const char *str, struct hm2_config *cfg, char *err, size_t 
     hm2_config_defaults(cfg);
     if (str == NULL)
         return 0;
+    /* a config="..." whose quotes reached us (halcmd keeps them on some
+     * paths): drop one surrounding pair */
+    char unq[1024];
+    size_t len = strlen(str);
+    if (len >= 2 && str[0] == '"' && str[len - 1] == '"' && len - 2 < sizeof(unq)) {
+        memcpy(unq, str + 1, len - 2);
+        unq[len - 2] = '\0';
+        str = unq;
+    }
     const char *p = str;
     while (*p) {
         while (*p && isspace((unsigned char)*p))

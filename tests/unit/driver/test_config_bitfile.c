@@ -35,6 +35,10 @@ static void test_config(void)
     CHECK_EQ_INT(c.stepgen_width, 4);
     CHECK_EQ_INT(c.enable_raw, 1);
     CHECK_EQ_STR(c.sserial_modes[0], "0x21xx");
+    CHECK_EQ_INT(hm2_config_parse("\"num_encoders=2 num_pwmgens=1\"", &c, err, sizeof(err)), 0);
+    CHECK_EQ_INT(c.num_encoders, 2);
+    CHECK_EQ_INT(c.num_pwmgens, 1);
+    CHECK_EQ_INT(hm2_config_parse("\"num_encoders=2", &c, err, sizeof(err)), -EINVAL);
     static const struct {
         const char *cfg, *msg;
     } bad[] = {
