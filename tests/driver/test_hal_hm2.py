@@ -150,3 +150,41 @@ getp hm2_5i20.0.watchdog.has_bit
     assert vals[2:4] == ["TRUE", "FALSE"], out
     assert float(vals[4]) == pytest.approx(2.0)
     assert vals[5:] == ["FALSE", "FALSE"], out
+
+
+def test_watchdog_bite_and_recovery(tmp_path: Path, img: Path) -> None:
+    """A bite (status bit set through the raw pins) sets has_bit and stops
+    writes; clearing has_bit recovers, as the seed describes."""
+    script = f"""loadrt hostmot2
+loadrt hm2_test image={img} config="num_encoders=1 enable_raw"
+loadrt threads name1=servo period1=1000000
+addf hm2_5i20.0.read servo
+addf hm2_5i20.0.write servo
+addf hm2_5i20.0.pet_watchdog servo
+start
+loadusr -w sleep 0.1
+getp hm2_5i20.0.watchdog.has_bit
+setp hm2_5i20.0.raw.write_address 0x0D00
+setp hm2_5i20.0.raw.write_data 1
+setp hm2_5i20.0.raw.write_strobe 1
+loadusr -w sleep 0.1
+setp hm2_5i20.0.raw.write_strobe 0
+getp hm2_5i20.0.watchdog.has_bit
+setp hm2_5i20.0.watchdog.has_bit 0
+loadusr -w sleep 0.1
+getp hm2_5i20.0.watchdog.has_bit
+setp hm2_5i20.0.raw.read_address 0x0D00
+loadusr -w sleep 0.1
+getp hm2_5i20.0.raw.read_data
+stop
+"""
+    r = halrun(tmp_path, script)
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    vals = [x.strip() for x in r.stdout.splitlines() if x.strip()]
+    vals = [v for v in vals if not v.startswith("hm2")][-4:]
+    assert vals[:3] == ["FALSE", "TRUE", "FALSE"], out
+    assert int(vals[3], 0) == 0, out
+    assert "hm2/hm2_5i20.0: Watchdog has bit! (set the .has-bit pin to False to resume)" in out
+    assert "hm2/hm2_5i20.0: trying to recover from IO error or Watchdog bite" in out
+    assert "hm2/hm2_5i20.0: error recover successful!" in out

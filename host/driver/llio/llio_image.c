@@ -53,10 +53,10 @@ static int im_write(hm2_llio_t *l, uint32_t addr, const void *buf, size_t size)
 static int im_queue_read(hm2_llio_t *l, uint32_t addr, void *buf, size_t size)
 {
     struct hm2_image_llio *im = IM(l);
-    if (!range_ok(addr, size))
-        return -EINVAL;
-    if (im->nrq >= HM2_IMAGE_MAX_QUEUE)
-        return -ENOSPC;
+    if (!range_ok(addr, size) || im->nrq >= HM2_IMAGE_MAX_QUEUE) {
+        im->nrq = 0; /* contract: a failed queue call discards the queue */
+        return range_ok(addr, size) ? -ENOSPC : -EINVAL;
+    }
     im->rq[im->nrq].addr = addr;
     im->rq[im->nrq].buf = buf;
     im->rq[im->nrq].size = size;
@@ -82,10 +82,10 @@ static int im_queue_write(hm2_llio_t *l, uint32_t addr, const void *buf, size_t 
     /* large writes are split into queue entries of 64 bytes */
     while (size && !r) {
         size_t n = size > sizeof(im->wq[0].data) ? sizeof(im->wq[0].data) : size;
-        if (!range_ok(addr, n))
-            return -EINVAL;
-        if (im->nwq >= HM2_IMAGE_MAX_QUEUE)
-            return -ENOSPC;
+        if (!range_ok(addr, n) || im->nwq >= HM2_IMAGE_MAX_QUEUE) {
+            im->nwq = 0; /* contract: a failed queue call discards the queue */
+            return range_ok(addr, n) ? -ENOSPC : -EINVAL;
+        }
         im->wq[im->nwq].addr = addr;
         memcpy(im->wq[im->nwq].data, buf, n);
         im->wq[im->nwq].size = n;

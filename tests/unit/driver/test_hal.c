@@ -273,9 +273,10 @@ static void test_watchdog_bite(void)
     hm2_unregister_board(&im.llio);
 }
 
-static void test_io_error(void)
+static void io_error_case(int queued)
 {
     setup(NULL);
+    hm2_image_llio_set_queued(&im, queued);
     fake_run(PFX ".read", PERIOD);
     im.fail_lo = 0x3000;
     im.fail_hi = 0x3003;
@@ -291,7 +292,17 @@ static void test_io_error(void)
     fake_run(PFX ".write", PERIOD);
     CHECK(tlog_find(&lg, "hm2/" PFX ": error recover successful!", 0) >= 0);
     CHECK(im.writes > writes);
+    CHECK_EQ_INT(im.nrq, 0);
+    CHECK_EQ_INT(im.nwq, 0);
+    fake_run(PFX ".read", PERIOD);
+    CHECK_EQ_INT(*fake_bit(PFX ".io_error"), 0);
     hm2_unregister_board(&im.llio);
+}
+
+static void test_io_error(void)
+{
+    io_error_case(0);
+    io_error_case(1);
 }
 
 static void enc_set(int inst, uint16_t count, uint16_t ts)
