@@ -78,7 +78,10 @@ int rtapi_app_main(void)
                             names[i]);
             delete_created(i);
             hal_exit(comp_id);
-            return rc;
+            /* LinuxCNC's threads returns -1 here ("Operation not
+             * permitted (-1)" in rtapi_app's message). */
+            (void)rc;
+            return -1;
         }
     }
     hal_ready(comp_id);

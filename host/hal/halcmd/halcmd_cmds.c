@@ -80,31 +80,48 @@ static void print_rt_messages(const char *msgs)
 
 /* ---- loadrt / unloadrt ----------------------------------------------------- */
 
-/* LinuxCNC's halcmd re-registers its own component around each loadrt after
- * the first (its loadrt goes through loadusr); component ids, which `show`
- * prints, follow that sequence, so we reproduce it. */
-static void mimic_loadrt_ids(void)
+/* Component ids are printed by `show`, so they follow LinuxCNC 2.9's
+ * sequence: its halcmd runs loadrt through a helper process that takes one
+ * id, and re-registers its own component (new id) on every successful
+ * loadrt after the first.  A failed loadrt that created nothing takes no
+ * id.  ids_before() reserves, ids_after() settles. */
+static int ids_before(void)
 {
     hal_priv_lock();
-    halpr_next_id();
+    int a = hal_hdr->next_id;
+    hal_hdr->next_id += hc.loadrt_done > 0 ? 2 : 1;
     hal_priv_unlock();
-    if (hc.loadrt_done > 0 && hc.comp_id > 0) {
-        hal_priv_lock();
+    return a;
+}
+
+static void ids_after(int a, int ok)
+{
+    hal_priv_lock();
+    if (!ok) {
+        if (hal_hdr->next_id == a + (hc.loadrt_done > 0 ? 2 : 1))
+            hal_hdr->next_id = a;
+        hal_priv_unlock();
+        return;
+    }
+    if (hc.loadrt_done > 0) {
         hal_comp_t *c = halpr_find_comp_by_id(hc.comp_id);
         if (c != NULL) {
-            /* Same record, new id, moved to the front (newest). */
             hal_off_t off = SHMOFF(c);
             hal_off_t *pp = &hal_hdr->comp_list;
             while (*pp != off)
                 pp = &((hal_comp_t *)SHMPTR(*pp))->next;
             *pp = c->next;
-            c->next = hal_hdr->comp_list;
-            hal_hdr->comp_list = off;
-            c->id = halpr_next_id();
+            c->id = a + 1;
+            /* the list is newest (highest id) first */
+            pp = &hal_hdr->comp_list;
+            while (*pp != 0 && ((hal_comp_t *)SHMPTR(*pp))->id > c->id)
+                pp = &((hal_comp_t *)SHMPTR(*pp))->next;
+            c->next = *pp;
+            *pp = off;
             hc.comp_id = c->id;
         }
-        hal_priv_unlock();
     }
+    hal_priv_unlock();
     hc.loadrt_done++;
 }
 
@@ -112,10 +129,11 @@ static int do_loadrt_cmd(int argc, char **argv)
 {
     const char *mod = argv[1];
     if (hal_get_lock() & HAL_LOCK_LOAD) {
-        halcmd_error("HAL is locked, loading of modules is not permitted\n");
+        halcmd_error("HAL is locked, loading of programs is not permitted\n");
+        halcmd_error("insmod for %s failed, returned -1\n", mod);
         return -EPERM;
     }
-    mimic_loadrt_ids();
+    int id0 = ids_before();
     const char **av = calloc((size_t)argc + 1, sizeof(char *));
     if (av == NULL)
         return -ENOMEM;
@@ -128,6 +146,7 @@ static int do_loadrt_cmd(int argc, char **argv)
     free(av);
     print_rt_messages(msgs);
     free(msgs);
+    ids_after(id0, rc == 0 && status == 0);
     if (rc != 0) {
         halcmd_error("cannot talk to rtapi_app: %s\n", strerror(-rc));
         return rc;
@@ -181,6 +200,14 @@ static int unloadrt_one(const char *mod)
     return 0;
 }
 
+static int unloadrt_one_counted(const char *mod)
+{
+    int id0 = ids_before();
+    int rc = unloadrt_one(mod);
+    ids_after(id0, rc == 0);
+    return rc;
+}
+
 static int unloadrt_all(void)
 {
     char **names;
@@ -188,7 +215,7 @@ static int unloadrt_all(void)
     int result = 0;
     /* The list is newest first: unload in reverse load order. */
     for (int i = 0; i < n; i++) {
-        int rc = unloadrt_one(names[i]);
+        int rc = unloadrt_one_counted(names[i]);
         if (rc)
             result = rc;
         free(names[i]);
@@ -200,10 +227,7 @@ static int unloadrt_all(void)
 static int do_unloadrt_cmd(int argc, char **argv)
 {
     (void)argc;
-    if (hal_get_lock() & HAL_LOCK_LOAD) {
-        halcmd_error("HAL is locked, unloading of modules is not permitted\n");
-        return -EPERM;
-    }
+    /* Unloading is allowed while locked (halrun must be able to end). */
     if (strcmp(argv[1], "all") == 0)
         return unloadrt_all();
     char **names;
@@ -219,7 +243,7 @@ static int do_unloadrt_cmd(int argc, char **argv)
         halcmd_error("component '%s' is not loaded\n", argv[1]);
         return -ENOENT;
     }
-    return unloadrt_one(argv[1]);
+    return unloadrt_one_counted(argv[1]);
 }
 
 /* ---- user components ----------------------------------------------------- */
@@ -506,6 +530,7 @@ static int do_newsig_cmd(int argc, char **argv)
     hal_type_t t = hal_q_type_from_name(argv[2]);
     if (t == HAL_TYPE_UNSPECIFIED) {
         halcmd_error("Unknown signal type '%s'\n", argv[2]);
+        halcmd_error("newsig failed\n");
         return -EINVAL;
     }
     if (hal_q_pin(argv[1], NULL) == 0) {
@@ -513,6 +538,8 @@ static int do_newsig_cmd(int argc, char **argv)
         return -EINVAL;
     }
     int rc = hal_signal_new(argv[1], t);
+    if (rc)
+        halcmd_error("newsig failed\n");
     return rc;
 }
 
@@ -559,10 +586,6 @@ static int do_net_cmd(int argc, char **argv)
                      sig);
         return -EINVAL;
     }
-    if (hal_get_lock() & HAL_LOCK_CONFIG) {
-        halcmd_error("HAL is locked, net is not permitted\n");
-        return -EPERM;
-    }
     /* Dry run of the whole command under the lock, then apply.  Messages
      * are LinuxCNC's, also where LinuxCNC would have made half a net. */
     hal_priv_lock();
@@ -579,6 +602,16 @@ static int do_net_cmd(int argc, char **argv)
             if (p->signal == SHMOFF(s) && p->dir == HAL_IO && bidir_name[0] == '\0')
                 snprintf(bidir_name, sizeof(bidir_name), "%s", p->name);
         }
+    }
+    if (hal_hdr->lock & HAL_LOCK_CONFIG) {
+        hal_priv_unlock();
+        if (!exists) {
+            rtapi_print_msg(RTAPI_MSG_ERR, "HAL: ERROR: signal_new called while HAL is locked\n");
+        } else {
+            rtapi_print_msg(RTAPI_MSG_ERR, "HAL: ERROR: link called while HAL locked\n");
+            halcmd_error("link failed\n");
+        }
+        return -EPERM;
     }
     int rc = 0;
     for (int i = 0; i < npins && rc == 0; i++) {
@@ -897,9 +930,7 @@ static int do_start_cmd(int argc, char **argv)
     (void)argc;
     (void)argv;
     int rc = hal_start_threads();
-    if (rc)
-        halcmd_error("start failed\n");
-    else
+    if (rc == 0)
         halcmd_info("Realtime threads started\n");
     return rc;
 }
@@ -909,9 +940,7 @@ static int do_stop_cmd(int argc, char **argv)
     (void)argc;
     (void)argv;
     int rc = hal_stop_threads();
-    if (rc)
-        halcmd_error("stop failed\n");
-    else
+    if (rc == 0)
         halcmd_info("Realtime threads stopped\n");
     return rc;
 }

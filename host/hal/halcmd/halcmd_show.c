@@ -446,36 +446,38 @@ static void save_links(int arrows)
         hal_pin_t *p = SHMPTR(off);
         if (!p->signal)
             continue;
-        const char *arrow = arrows ? (p->dir == HAL_OUT ? "=>" : p->dir == HAL_IO ? "<=>" : "<=") : "";
-        o("linkps %s %s%s%s\n", p->name, arrow, arrows ? " " : "",
+        o("linkps %s %s %s\n", p->name, arrows ? pin_arrow(p->dir) : "",
           ((hal_sig_t *)SHMPTR(p->signal))->name);
     }
 }
 
-static void save_nets(int arrows, int one_per_line)
+/* save net / neta: every signal as newsig, then one linksp per pin (neta:
+ * with the arrow seen from the signal). */
+static void save_nets(int arrows)
 {
     o("# nets\n");
     for (hal_off_t soff = hal_hdr->sig_list; soff; soff = ((hal_sig_t *)SHMPTR(soff))->next) {
         hal_sig_t *s = SHMPTR(soff);
-        if (!sig_has_pins(soff)) {
-            o("newsig %s %s\n", s->name, type5(s->type));
-            continue;
+        o("newsig %s %s\n", s->name, type5(s->type));
+        for (hal_off_t off = hal_hdr->pin_list; off; off = ((hal_pin_t *)SHMPTR(off))->next) {
+            hal_pin_t *p = SHMPTR(off);
+            if (p->signal == soff)
+                o("linksp %s %s %s\n", s->name, arrows ? sig_arrow(p->dir) : "", p->name);
         }
-        if (one_per_line) {
-            for (hal_off_t off = hal_hdr->pin_list; off; off = ((hal_pin_t *)SHMPTR(off))->next) {
-                hal_pin_t *p = SHMPTR(off);
-                if (p->signal != soff)
-                    continue;
-                if (arrows)
-                    o("net %s %s %s\n", s->name,
-                      p->dir == HAL_OUT ? "<=" : p->dir == HAL_IO ? "<=>" : "=>", p->name);
-                else
-                    o("net %s %s\n", s->name, p->name);
-            }
+    }
+}
+
+/* save netl / netla (and the nets of save all): linked signals only, one
+ * net line each: writer, I/O pins, then readers, with "=>" before the
+ * readers when arrows are asked for and there is a writer. */
+static void save_nets_linked(int arrows)
+{
+    o("# nets\n");
+    for (hal_off_t soff = hal_hdr->sig_list; soff; soff = ((hal_sig_t *)SHMPTR(soff))->next) {
+        hal_sig_t *s = SHMPTR(soff);
+        if (!sig_has_pins(soff))
             continue;
-        }
         o("net %s", s->name);
-        /* writer first, then bidirectional pins, then readers */
         for (hal_off_t off = hal_hdr->pin_list; off; off = ((hal_pin_t *)SHMPTR(off))->next) {
             hal_pin_t *p = SHMPTR(off);
             if (p->signal == soff && p->dir == HAL_OUT)
@@ -490,7 +492,7 @@ static void save_nets(int arrows, int one_per_line)
         for (hal_off_t off = hal_hdr->pin_list; off; off = ((hal_pin_t *)SHMPTR(off))->next) {
             hal_pin_t *p = SHMPTR(off);
             if (p->signal == soff && p->dir == HAL_IN) {
-                if (first && (s->writers || s->bidirs || arrows))
+                if (first && arrows && s->writers)
                     o(" =>");
                 first = 0;
                 o(" %s", p->name);
@@ -520,7 +522,7 @@ static void save_unconnected_inpins(void)
         hal_pin_t *p = SHMPTR(off);
         if (p->signal || p->dir == HAL_OUT)
             continue;
-        o("setp %s %s\n", p->name, value_pp(p->type, halpr_pin_value(p), buf, sizeof(buf)));
+        o("setp %s %s\n", p->name, value12(p->type, halpr_pin_value(p), buf, sizeof(buf)));
     }
 }
 
@@ -556,7 +558,7 @@ int do_save_cmd(int argc, char **argv)
         save_comps();
         save_aliases();
         save_sigs(1);
-        save_nets(u, 0);
+        save_nets_linked(1);
         save_params();
         if (u)
             save_unconnected_inpins();
@@ -572,11 +574,11 @@ int do_save_cmd(int argc, char **argv)
     } else if (strcmp(type, "link") == 0 || strcmp(type, "linka") == 0) {
         save_links(type[4] == 'a');
     } else if (strcmp(type, "net") == 0 || strcmp(type, "neta") == 0) {
-        save_nets(type[3] == 'a', 0);
+        save_nets(type[3] == 'a');
     } else if (strcmp(type, "netl") == 0) {
-        save_nets(0, 1);
+        save_nets_linked(0);
     } else if (strcmp(type, "netla") == 0 || strcmp(type, "netal") == 0) {
-        save_nets(1, 1);
+        save_nets_linked(1);
     } else if (strcmp(type, "param") == 0 || strcmp(type, "parameter") == 0) {
         save_params();
     } else if (strcmp(type, "unconnectedinpins") == 0) {

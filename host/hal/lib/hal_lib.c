@@ -361,7 +361,7 @@ int hal_signal_new(const char *name, hal_type_t type)
     hal_priv_lock();
     if (hal_hdr->lock & HAL_LOCK_CONFIG) {
         hal_priv_unlock();
-        ERR("HAL: ERROR: signal_new called while HAL locked\n");
+        ERR("HAL: ERROR: signal_new called while HAL is locked\n");
         return -EPERM;
     }
     if (halpr_find_sig_by_name(name) != NULL) {
@@ -1247,12 +1247,8 @@ int hal_thread_delete(const char *name)
 {
     if (name == NULL || hal_hdr == NULL)
         return -EINVAL;
+    /* Like hal_exit, allowed while locked: a session must be able to end. */
     hal_priv_lock();
-    if (hal_hdr->lock & HAL_LOCK_CONFIG) {
-        hal_priv_unlock();
-        ERR("HAL: ERROR: thread_delete called while HAL locked\n");
-        return -EPERM;
-    }
     hal_thread_t *t = halpr_find_thread_by_name(name);
     if (t == NULL) {
         hal_priv_unlock();
@@ -1291,7 +1287,7 @@ int hal_add_funct_to_thread(const char *funct_name, const char *thread_name, int
     hal_priv_lock();
     int rc = -EINVAL;
     if (hal_hdr->lock & HAL_LOCK_CONFIG) {
-        ERR("HAL: ERROR: add_funct_to_thread called while HAL locked\n");
+        ERR("HAL: ERROR: add_funct_to_thread called while HAL is locked\n");
         rc = -EPERM;
         goto out;
     }
@@ -1361,7 +1357,7 @@ int hal_del_funct_from_thread(const char *funct_name, const char *thread_name)
     hal_priv_lock();
     int rc = -EINVAL;
     if (hal_hdr->lock & HAL_LOCK_CONFIG) {
-        ERR("HAL: ERROR: del_funct_from_thread called while HAL locked\n");
+        ERR("HAL: ERROR: del_funct_from_thread called while HAL is locked\n");
         rc = -EPERM;
         goto out;
     }

@@ -480,10 +480,8 @@ int hal_q_setp(const char *name, const char *value, char *err, size_t errlen)
     hal_data_u v;
     hal_param_t *pa = halpr_find_param_by_name(name);
     if (pa != NULL) {
-        if (hal_hdr->lock & HAL_LOCK_PARAMS) {
-            SETERR("HAL is locked, cannot set parameter '%s'", name);
-            rc = -EPERM;
-        } else if (pa->dir == HAL_RO) {
+        /* Like LinuxCNC's halcmd, setp is not subject to the HAL lock. */
+        if (pa->dir == HAL_RO) {
             SETERR("param '%s' is not writable", name);
             rc = -EPERM;
         } else if ((rc = hal_q_parse_value(pa->type, value, &v)) != 0) {
@@ -498,9 +496,6 @@ int hal_q_setp(const char *name, const char *value, char *err, size_t errlen)
     if (pi == NULL) {
         SETERR("parameter or pin '%s' not found", name);
         rc = -ENOENT;
-    } else if (hal_hdr->lock & HAL_LOCK_PARAMS) {
-        SETERR("HAL is locked, cannot set pin '%s'", name);
-        rc = -EPERM;
     } else if (pi->dir == HAL_OUT) {
         SETERR("pin '%s' is not writable", name);
         rc = -EPERM;
@@ -552,9 +547,6 @@ int hal_q_sets(const char *name, const char *value, char *err, size_t errlen)
     if (s == NULL) {
         SETERR("signal '%s' not found", name);
         rc = -ENOENT;
-    } else if (hal_hdr->lock & HAL_LOCK_PARAMS) {
-        SETERR("HAL is locked, cannot set signal '%s'", name);
-        rc = -EPERM;
     } else if (s->writers > 0) {
         SETERR("signal '%s' already has writer(s)", name);
         rc = -EPERM;

@@ -875,6 +875,9 @@ int main(int argc, char **argv)
         }
         if (served > 0 && modules == NULL && rt_threads == NULL)
             break;
+        /* The session was destroyed under us (halrun -U): leave. */
+        if (hal_priv_session_state() == 0)
+            break;
     }
     /* Stop taking requests before tearing down. */
     close(lfd);

@@ -151,8 +151,30 @@ static int read_all(int fd, void *buf, size_t len)
     return 0;
 }
 
+static int request_once(int start, int argc, const char *const *argv, int *status,
+                        char **messages);
+
 int rtapi_client_request(int start, int argc, const char *const *argv, int *status,
                          char **messages)
+{
+    /* rtapi_app leaves when nothing is loaded; a request that raced with
+     * its exit was never seen by it (the connection is reset before any
+     * reply), so it is safe to try again with a fresh one. */
+    int rc = -EPIPE;
+    for (int attempt = 0; attempt < 5; attempt++) {
+        rc = request_once(start, argc, argv, status, messages);
+        if (rc != -EPIPE && rc != -ECONNRESET && rc != -ECONNREFUSED)
+            return rc;
+        if (rc == -ECONNREFUSED && !start)
+            return rc;
+        struct timespec ts = {0, 5000000};
+        nanosleep(&ts, NULL);
+    }
+    return rc;
+}
+
+static int request_once(int start, int argc, const char *const *argv, int *status,
+                        char **messages)
 {
     if (messages)
         *messages = NULL;
