@@ -1,0 +1,190 @@
+/* SPDX-License-Identifier: GPL-2.0-or-later */
+/*
+ * Unit tests of hm_stream (cfg strings, the shared-memory ring between a
+ * sampler/streamer channel and its peer) and of hm_comp's count=/names=
+ * resolution, against expectations written from sampler(9)/and2(9).
+ */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "hm_comp.h"
+#include "hm_stream.h"
+
+static void test_cfg(void)
+{
+    hal_type_t t[HM_STREAM_MAX_PINS];
+    char err[128];
+    CHECK_EQ_INT(hm_stream_parse_cfg("bfsu", t, err, sizeof(err)), 4);
+    CHECK(t[0] == HAL_BIT && t[1] == HAL_FLOAT && t[2] == HAL_S32 && t[3] == HAL_U32);
+    CHECK_EQ_INT(hm_stream_parse_cfg("BFSULK", t, err, sizeof(err)), 6);
+    CHECK(t[4] == HAL_S64 && t[5] == HAL_U64);
+    CHECK_EQ_INT(hm_stream_parse_cfg("bx", t, err, sizeof(err)), -EINVAL);
+    CHECK(strstr(err, "unknown type 'x' at position 2") != NULL);
+    CHECK_EQ_INT(hm_stream_parse_cfg("", t, err, sizeof(err)), -EINVAL);
+    CHECK_EQ_INT(hm_stream_parse_cfg(NULL, t, err, sizeof(err)), -EINVAL);
+    char many[32];
+    memset(many, 'f', 22);
+    many[22] = '\0';
+    CHECK_EQ_INT(hm_stream_parse_cfg(many, t, err, sizeof(err)), -EINVAL);
+    CHECK(strstr(err, "more than 21") != NULL);
+    many[21] = '\0';
+    CHECK_EQ_INT(hm_stream_parse_cfg(many, t, err, sizeof(err)), 21);
+    CHECK_EQ_INT(hm_stream_parse_cfg("b f", t, err, sizeof(err)), -EINVAL);
+}
+
+static void test_ring(void)
+{
+    hal_type_t types[2] = {HAL_S32, HAL_FLOAT};
+    char err[256];
+    hm_stream_t rt, peer, other;
+    CHECK_EQ_INT(hm_stream_create(&rt, "sampler", 3, 4, 2, types, err, sizeof(err)), 0);
+    CHECK_EQ_INT(hm_stream_capacity(&rt), 4);
+    CHECK_EQ_INT(hm_stream_fill(&rt), 0);
+    CHECK(!hm_stream_peer_attached(&rt));
+    CHECK_EQ_INT(hm_stream_attach(&peer, "sampler", 3, err, sizeof(err)), 0);
+    CHECK(hm_stream_peer_attached(&rt));
+    CHECK_EQ_INT(hm_stream_pin_count(&peer), 2);
+    CHECK(hm_stream_pin_type(&peer, 1) == HAL_FLOAT);
+    /* a second live peer (a child process) is refused */
+    pid_t pid = fork();
+    if (pid == 0) {
+        int r = hm_stream_attach(&other, "sampler", 3, err, sizeof(err));
+        _exit(r == -EBUSY && strstr(err, "already in use") ? 0 : 1);
+    }
+    int st = 0;
+    waitpid(pid, &st, 0);
+    CHECK(WIFEXITED(st) && WEXITSTATUS(st) == 0);
+
+    hm_stream_value_t v[2], out[2];
+    rtapi_u32 num = 99;
+    CHECK_EQ_INT(hm_stream_read(&peer, out, &num), -EAGAIN);
+    /* wrap the ring several times against a model queue: a write succeeds
+     * exactly when fewer than 4 are queued, reads return FIFO order */
+    rtapi_u32 model[64];
+    int head = 0, tail = 0;
+    for (rtapi_u32 k = 0; k < 40; k++) {
+        v[0].s = -(rtapi_s32)k;
+        v[1].f = k * 0.5;
+        int r = hm_stream_write(&rt, v, k);
+        if (tail - head < 4) {
+            CHECK_EQ_INT(r, 0);
+            model[tail++] = k;
+        } else {
+            CHECK_EQ_INT(r, -ENOSPC);
+        }
+        CHECK_EQ_INT(hm_stream_fill(&rt), tail - head);
+        if (k % 7 == 6) {
+            while (tail - head > 1) {
+                CHECK_EQ_INT(hm_stream_read(&peer, out, &num), 0);
+                rtapi_u32 w = model[head++];
+                CHECK_EQ_INT(num, w);
+                CHECK_EQ_INT(out[0].s, -(rtapi_s32)w);
+                CHECK(out[1].f == w * 0.5);
+            }
+        }
+    }
+    hm_stream_detach(&peer);
+    CHECK(!hm_stream_peer_attached(&rt));
+    CHECK(!hm_stream_closed(&rt));
+    /* the realtime side goes away: a peer attached later sees no channel */
+    hm_stream_destroy(&rt);
+    CHECK_EQ_INT(hm_stream_attach(&peer, "sampler", 3, err, sizeof(err)), -ENOENT);
+    CHECK(strstr(err, "no sampler channel 3") != NULL);
+}
+
+static void test_full_and_order(void)
+{
+    hal_type_t types[1] = {HAL_U32};
+    char err[256];
+    hm_stream_t rt, peer;
+    CHECK_EQ_INT(hm_stream_create(&rt, "streamer", 0, 3, 1, types, err, sizeof(err)), 0);
+    CHECK_EQ_INT(hm_stream_attach(&peer, "streamer", 0, err, sizeof(err)), 0);
+    hm_stream_value_t v, out;
+    for (rtapi_u32 k = 0; k < 3; k++) {
+        v.u = 100 + k;
+        CHECK_EQ_INT(hm_stream_write(&peer, &v, k), 0);
+    }
+    v.u = 7;
+    CHECK_EQ_INT(hm_stream_write(&peer, &v, 3), -ENOSPC); /* capacity is exactly depth */
+    for (rtapi_u32 k = 0; k < 3; k++) {
+        rtapi_u32 n;
+        CHECK_EQ_INT(hm_stream_read(&rt, &out, &n), 0);
+        CHECK_EQ_INT(out.u, 100 + k);
+        CHECK_EQ_INT(n, k);
+    }
+    CHECK_EQ_INT(hm_stream_read(&rt, &out, NULL), -EAGAIN);
+    hm_stream_destroy(&rt);
+    CHECK(hm_stream_closed(&peer)); /* the peer's mapping stays valid */
+    hm_stream_detach(&peer);
+}
+
+static void test_bad_create(void)
+{
+    hal_type_t types[1] = {HAL_BIT};
+    char err[256];
+    hm_stream_t s;
+    CHECK_EQ_INT(hm_stream_create(&s, "sampler", 0, 0, 1, types, err, sizeof(err)), -EINVAL);
+    CHECK_EQ_INT(hm_stream_create(&s, "sampler", 0, 4, 0, types, err, sizeof(err)), -EINVAL);
+    CHECK_EQ_INT(hm_stream_create(&s, "sampler", 0, 1 << 25, 1, types, err, sizeof(err)),
+                 -EINVAL);
+    CHECK(strstr(err, "too large") != NULL);
+}
+
+static void test_instance_names(void)
+{
+    char(*out)[HAL_NAME_LEN + 1] = calloc(HM_COMP_MAX_COUNT, sizeof(*out));
+    char *none[4] = {NULL, NULL, NULL, NULL};
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, none, 4, 15, out), 1);
+    CHECK_EQ_STR(out[0], "and2.0");
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 3, 1000, none, 4, 15, out), 3);
+    CHECK_EQ_STR(out[2], "and2.2");
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", -1, 1000, none, 4, 15, out),
+                 -EINVAL);
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 1001, 1000, none, 4, 15, out),
+                 -EINVAL);
+    char *two[4] = {"a", "b", NULL, NULL};
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, two, 4, 15, out), 2);
+    CHECK_EQ_STR(out[1], "b");
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 2, 1000, two, 4, 15, out),
+                 -EINVAL);
+    char *dup[4] = {"a", "a", NULL, NULL};
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, dup, 4, 15, out),
+                 -EINVAL);
+    char *gap[4] = {"a", "", "b", NULL};
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, gap, 4, 15, out),
+                 -EINVAL);
+    char *blank[4] = {"a b", NULL, NULL, NULL};
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, blank, 4, 15, out),
+                 -EINVAL);
+    /* 32 + 15 = 47 fits, 33 + 15 does not */
+    char n32[40], n33[40];
+    memset(n32, 'x', 32);
+    n32[32] = '\0';
+    memset(n33, 'x', 33);
+    n33[33] = '\0';
+    char *ok[4] = {n32, NULL, NULL, NULL};
+    char *bad[4] = {n33, NULL, NULL, NULL};
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, ok, 4, 15, out), 1);
+    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, bad, 4, 15, out),
+                 -EINVAL);
+    free(out);
+}
+
+int main(void)
+{
+    char inst[64];
+    snprintf(inst, sizeof(inst), "unit-hm-stream-%d", (int)getpid());
+    setenv("HAL_INSTANCE", inst, 1);
+    RUN(test_cfg);
+    RUN(test_ring);
+    RUN(test_full_and_order);
+    RUN(test_bad_create);
+    RUN(test_instance_names);
+    return check_summary();
+}
