@@ -197,16 +197,14 @@ static void write_module_regs(hostmot2_t *hm2, bool force)
     bool hires = *s->ghal->hires_timestamp;
     if (force || hires != s->written_hires) {
         s->tsdiv = hm2_encoder_tsdiv(clock, hires);
-        if (hm2_write_reg(hm2, hm2_reg_addr(s->md, REG_TSDIV, 0), s->tsdiv))
-            hm2->needs_reset = true;
+        hm2_write_cfg(hm2, hm2_reg_addr(s->md, REG_TSDIV, 0), s->tsdiv);
         s->written_hires = hires;
     }
     uint32_t freq = *s->ghal->sample_frequency;
     if (force || freq != s->written_sample_frequency) {
         uint32_t eff;
         uint32_t rate = hm2_encoder_qfilter_rate(clock, freq, &eff);
-        if (hm2_write_reg(hm2, hm2_reg_addr(s->md, REG_QFILTER, 0), rate))
-            hm2->needs_reset = true;
+        hm2_write_cfg(hm2, hm2_reg_addr(s->md, REG_QFILTER, 0), rate);
         *s->ghal->sample_frequency = eff;
         s->written_sample_frequency = eff;
     }
@@ -220,10 +218,8 @@ static void write_controls(hostmot2_t *hm2, bool force)
         uint32_t c = control_word(e);
         if (!force && e->control_written && c == e->written_control)
             continue;
-        if (hm2_write_reg(hm2, hm2_reg_addr(s->md, REG_CCR, i), c)) {
-            hm2->needs_reset = true;
+        if (hm2_write_cfg(hm2, hm2_reg_addr(s->md, REG_CCR, i), c))
             continue;
-        }
         e->written_control = c;
         e->control_written = true;
         e->track.latch_pending = (c & CCR_LATCH_INDEX) != 0;

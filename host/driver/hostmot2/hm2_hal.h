@@ -87,6 +87,10 @@ void hm2_raw_process_read(hostmot2_t *hm2);
 void hm2_raw_write(hostmot2_t *hm2);
 void hm2_raw_cleanup(hostmot2_t *hm2);
 
+/* Immediate configuration write: on failure the board needs a reset (the
+ * next write() tries to recover).  Returns 0 or the llio's error. */
+int hm2_write_cfg(hostmot2_t *hm2, uint32_t addr, uint32_t val);
+
 /* hal_malloc that zeroes and reports failure */
 void *hm2_hal_zalloc(hostmot2_t *hm2, size_t size, const char *what);
 

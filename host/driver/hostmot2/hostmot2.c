@@ -25,6 +25,17 @@ void *hm2_hal_zalloc(hostmot2_t *hm2, size_t size, const char *what)
     return p;
 }
 
+int hm2_write_cfg(hostmot2_t *hm2, uint32_t addr, uint32_t val)
+{
+    int r = hm2_write_reg(hm2, addr, val);
+    if (r) {
+        hm2_msg(hm2, HM2_ERR, "error writing 0x%08X to register 0x%04X: %s", val, addr,
+                strerror(-r));
+        hm2->needs_reset = true;
+    }
+    return r;
+}
+
 int hm2_hal_fail(hostmot2_t *hm2, int r, const char *what)
 {
     hm2_msg(hm2, HM2_ERR, "error %d (%s) exporting %s.%s to HAL", r, strerror(-r),

@@ -167,10 +167,8 @@ static void write_config(hostmot2_t *hm2, bool force)
         for (int port = 0; port < s->num_ports; port++) {
             if (!force && s->cfg[reg][port] == s->wrote[reg][port])
                 continue;
-            if (hm2_write_reg(hm2, hm2_reg_addr(&hm2->ioport.md, reg, port), s->cfg[reg][port]) == 0)
+            if (hm2_write_cfg(hm2, hm2_reg_addr(&hm2->ioport.md, reg, port), s->cfg[reg][port]) == 0)
                 s->wrote[reg][port] = s->cfg[reg][port];
-            else
-                hm2->needs_reset = true;
         }
     }
 }

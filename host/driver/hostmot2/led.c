@@ -49,10 +49,8 @@ static void led_write(hostmot2_t *hm2, bool force)
             v |= 1u << (31 - i);
     if (!force && s->done && v == s->written)
         return;
-    if (hm2_write_reg(hm2, hm2_reg_addr(&hm2->led.md, 0, 0), v)) {
-        hm2->needs_reset = true;
+    if (hm2_write_cfg(hm2, hm2_reg_addr(&hm2->led.md, 0, 0), v))
         return;
-    }
     s->written = v;
     s->done = true;
 }

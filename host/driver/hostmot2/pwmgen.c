@@ -134,8 +134,7 @@ static bool config_changed(const struct hm2_pwmgen_state *s)
 
 static void write_reg(hostmot2_t *hm2, int reg, int inst, uint32_t v)
 {
-    if (hm2_write_reg(hm2, hm2_reg_addr(hm2->pwmgen_s->md, reg, inst), v))
-        hm2->needs_reset = true;
+    hm2_write_cfg(hm2, hm2_reg_addr(hm2->pwmgen_s->md, reg, inst), v);
 }
 
 void hm2_pwmgen_force_write(hostmot2_t *hm2)

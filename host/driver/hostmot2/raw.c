@@ -67,8 +67,7 @@ void hm2_raw_write(hostmot2_t *hm2)
     struct hm2_raw_state *s = hm2->raw_s;
     if (!s || !*s->hal->write_strobe)
         return;
-    if (hm2_write_reg(hm2, *s->hal->write_address & 0xFFFCu, *s->hal->write_data))
-        hm2->needs_reset = true;
+    hm2_write_cfg(hm2, *s->hal->write_address & 0xFFFCu, *s->hal->write_data);
 }
 
 void hm2_raw_cleanup(hostmot2_t *hm2)

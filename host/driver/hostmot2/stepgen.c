@@ -244,8 +244,7 @@ void hm2_stepgen_prepare_write(hostmot2_t *hm2, long period)
 
 static void write_reg(hostmot2_t *hm2, int reg, int inst, uint32_t v)
 {
-    if (hm2_write_reg(hm2, hm2_reg_addr(hm2->stepgen_s->md, reg, inst), v))
-        hm2->needs_reset = true;
+    hm2_write_cfg(hm2, hm2_reg_addr(hm2->stepgen_s->md, reg, inst), v);
 }
 
 static void write_timing(hostmot2_t *hm2, int i, bool force)

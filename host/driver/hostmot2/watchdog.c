@@ -81,11 +81,8 @@ static void write_timer(hostmot2_t *hm2)
 {
     struct hm2_watchdog_state *s = hm2->watchdog_s;
     uint32_t v = s->enable ? timer_value(hm2) : WD_DISABLED;
-    if (hm2_write_reg(hm2, hm2_reg_addr(&hm2->watchdog.md, REG_TIMER, 0), v)) {
-        hm2_msg(hm2, HM2_ERR, "error writing watchdog timer");
-        hm2->needs_reset = true;
+    if (hm2_write_cfg(hm2, hm2_reg_addr(&hm2->watchdog.md, REG_TIMER, 0), v))
         return;
-    }
     s->timer_written = s->enable;
     s->written_timeout_ns = s->hal->timeout_ns;
 }
@@ -103,8 +100,7 @@ void hm2_watchdog_clear_bite(hostmot2_t *hm2)
     struct hm2_watchdog_state *s = hm2->watchdog_s;
     if (!s)
         return;
-    if (hm2_write_reg(hm2, hm2_reg_addr(&hm2->watchdog.md, REG_STATUS, 0), 0))
-        hm2->needs_reset = true;
+    hm2_write_cfg(hm2, hm2_reg_addr(&hm2->watchdog.md, REG_STATUS, 0), 0);
     s->bite_seen = false;
 }
 
