@@ -188,3 +188,33 @@ stop
     assert "hm2/hm2_5i20.0: Watchdog has bit! (set the .has-bit pin to False to resume)" in out
     assert "hm2/hm2_5i20.0: trying to recover from IO error or Watchdog bite" in out
     assert "hm2/hm2_5i20.0: error recover successful!" in out
+
+
+# What LinuxCNC 2.9 exports for a full GPIO pin and for the board functions
+# (captured from its halrun with `loadrt hm2_test test_pattern=12`, `show`).
+LINUXCNC_GPIO = {
+    "in": ("bit", "OUT"),
+    "in_not": ("bit", "OUT"),
+    "out": ("bit", "IN"),
+    "invert_output": ("bit", "RW"),
+    "is_opendrain": ("bit", "RW"),
+    "is_output": ("bit", "RW"),
+}
+LINUXCNC_FUNCTS_FP = {"read": "YES", "write": "YES", "read_gpio": "YES", "write_gpio": "YES"}
+
+
+def test_gpio_objects_match_linuxcnc(tmp_path: Path, img: Path) -> None:
+    r = halrun(tmp_path, "loadrt hostmot2\n"
+               f'loadrt hm2_test image={img} config="num_encoders=0 num_pwmgens=0 '
+               'num_stepgens=0"\nshow pin\nshow param\nshow funct\n')
+    out = r.stdout
+    assert r.returncode == 0, out + r.stderr
+    objs: dict[str, dict[str, tuple[str, str]]] = {}
+    for m in re.finditer(r"^\s*\d+\s+(bit|s32|u32|float)\s+(IN|OUT|I/O|RO|RW)\s+\S+\s+"
+                         r"hm2_5i20\.0\.gpio\.(\d{3})\.(\S+)$", out, re.M):
+        objs.setdefault(m.group(3), {})[m.group(4)] = (m.group(1), m.group(2))
+    assert sorted(objs) == [f"{i:03d}" for i in range(72)]
+    for pin, o in objs.items():
+        assert o == LINUXCNC_GPIO, pin
+    for name, fp in LINUXCNC_FUNCTS_FP.items():
+        assert re.search(rf"\s{fp}\s+\d+\s+hm2_5i20\.0\.{name}$", out, re.M), name

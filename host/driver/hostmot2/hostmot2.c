@@ -188,15 +188,15 @@ static int export_functions(hostmot2_t *hm2, struct hm2_funct_handle *h)
         return hm2_hal_fail(hm2, r, "write");
     if (hm2->watchdog_s) {
         /* seed name, and the hyphenated spelling its function list uses */
-        if ((r = hal_export_functf(hm2_pet_watchdog, h, 0, 0, id, "%s.pet_watchdog", pfx)))
+        if ((r = hal_export_functf(hm2_pet_watchdog, h, 1, 0, id, "%s.pet_watchdog", pfx)))
             return hm2_hal_fail(hm2, r, "pet_watchdog");
-        if ((r = hal_export_functf(hm2_pet_watchdog, h, 0, 0, id, "%s.pet-watchdog", pfx)))
+        if ((r = hal_export_functf(hm2_pet_watchdog, h, 1, 0, id, "%s.pet-watchdog", pfx)))
             return hm2_hal_fail(hm2, r, "pet-watchdog");
     }
     if (hm2->llio->threadsafe) {
-        if ((r = hal_export_functf(hm2_read_gpio, h, 0, 0, id, "%s.read_gpio", pfx)))
+        if ((r = hal_export_functf(hm2_read_gpio, h, 1, 0, id, "%s.read_gpio", pfx)))
             return hm2_hal_fail(hm2, r, "read_gpio");
-        if ((r = hal_export_functf(hm2_write_gpio, h, 0, 0, id, "%s.write_gpio", pfx)))
+        if ((r = hal_export_functf(hm2_write_gpio, h, 1, 0, id, "%s.write_gpio", pfx)))
             return hm2_hal_fail(hm2, r, "write_gpio");
     }
     return 0;
