@@ -584,6 +584,36 @@ static void test_failures(void)
     fake_hal_reset();
 }
 
+/* Random corruption through the whole HAL path: whatever the probe
+ * accepts must export, run and unregister cleanly (ASan/UBSan watching). */
+static void test_random_corruption_full(void)
+{
+    uint32_t seed = 777;
+    int loaded = 0;
+    for (int iter = 0; iter < 400; iter++) {
+        fake_hal_reset();
+        t_setup_5i20(&im);
+        for (int f = 0; f < 2; f++) {
+            seed = seed * 1103515245u + 12345u;
+            uint32_t addr = 0x400 + (seed >> 8) % 0x400;
+            seed = seed * 1103515245u + 12345u;
+            im.mem[addr] = (uint8_t)(seed >> 16);
+        }
+        if (do_register(iter % 2 ? NULL : "num_encoders=2 enable_raw") == 0) {
+            loaded++;
+            for (int k = 0; k < 3; k++) {
+                fake_run(PFX ".read", PERIOD);
+                fake_run(PFX ".write", PERIOD);
+            }
+            hm2_unregister_board(&im.llio);
+        } else {
+            CHECK(im.llio.hm2 == NULL);
+        }
+    }
+    fprintf(stderr, "full-path corruption: %d of 400 loaded\n", loaded);
+    CHECK(loaded > 50);
+}
+
 int main(void)
 {
     RUN(test_names);
@@ -596,6 +626,7 @@ int main(void)
     RUN(test_pwmgen);
     RUN(test_led_raw_queued);
     RUN(test_failures);
+    RUN(test_random_corruption_full);
     tlog_clear(&lg);
     return check_summary();
 }
