@@ -30,6 +30,21 @@ pytestmark = pytest.mark.skipif(
 )
 
 
+def _sanitizer_env() -> dict[str, str]:
+    """A sanitized build (make test SANITIZE=1) links _hal.so against ASan;
+    the (uninstrumented) Python interpreter then needs the ASan runtime
+    preloaded, and Python's own allocations at exit are not ours to report."""
+    ext = next(PYDIR.glob("_hal*.so"), None)
+    if ext is None:
+        return {}
+    ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True).stdout
+    libs = [line.split("=>")[1].split()[0] for line in ldd.splitlines()
+            if "=>" in line and ("libasan" in line or "libubsan" in line)]
+    if not libs:
+        return {}
+    return {"LD_PRELOAD": " ".join(libs), "ASAN_OPTIONS": "detect_leaks=0"}
+
+
 def run_session(tmp_path: Path, hal_text: str, files: dict[str, str] | None = None,
                 timeout: float = 60) -> subprocess.CompletedProcess[str]:
     """Run `halrun -f test.hal` in tmp_path with a fresh HAL_INSTANCE."""
@@ -41,6 +56,7 @@ def run_session(tmp_path: Path, hal_text: str, files: dict[str, str] | None = No
     env["PATH"] = f"{BUILD / 'bin'}:{env.get('PATH', '')}"
     env["PYTHONPATH"] = str(PYDIR)
     env.pop("HAL_SIMCLOCK", None)
+    env.update(_sanitizer_env())
     return subprocess.run([str(HALRUN), "-f", "test.hal"], cwd=tmp_path, env=env, text=True,
                           capture_output=True, timeout=timeout)
 
