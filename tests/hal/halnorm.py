@@ -21,7 +21,7 @@ _DROP = [
     re.compile(r"^(.*:\d+: )?\S*rtapi_app exited without becoming ready"),
 ]
 _HALCMD = re.compile(r"halcmd\d+")
-_COMP_USER = re.compile(r"^( +\d+  User  \S+ +) *\d+ (ready|initializing)$")
+_COMP_USER = re.compile(r"^( +\d+  User  )(\S+) +(?:\d+|PID) (ready|initializing)$")
 _FUNCT = re.compile(r"^( \d{5})  [0-9a-f]+  [0-9a-f]+  (YES|NO )")
 _MEM = re.compile(r"^(  used/total shared memory:).*$")
 
@@ -31,10 +31,11 @@ def normalize(text: str) -> str:
     for line in text.splitlines():
         if any(p.search(line) for p in _DROP):
             continue
-        line = _HALCMD.sub("halcmdPID", line)
         m = _COMP_USER.match(line)
         if m:
-            line = f"{m.group(1)}  PID {m.group(2)}"
+            name = _HALCMD.sub("halcmdPID", m.group(2))
+            line = f"{m.group(1)}{name:<47}   PID {m.group(3)}"
+        line = _HALCMD.sub("halcmdPID", line)
         line = _FUNCT.sub(r"\1  CODEADDR  ARG  \2", line)
         line = _MEM.sub(r"\1   USED/TOTAL", line)
         out.append(line)

@@ -272,16 +272,12 @@ static void sleep_ms(int ms)
     nanosleep(&ts, NULL);
 }
 
-static int pid_alive(int pid)
-{
-    return pid > 0 && (kill(pid, 0) == 0 || errno == EPERM);
-}
 
 /* Remove the component of a process that died without hal_exit. */
 static void reap_dead_comp(const char *name)
 {
     hal_q_comp_t c;
-    if (hal_q_comp(name, &c) == 0 && !c.realtime && !pid_alive(c.pid))
+    if (hal_q_comp(name, &c) == 0 && !c.realtime && !hal_priv_pid_alive(c.pid))
         halpr_comp_delete(c.id);
 }
 
@@ -296,7 +292,7 @@ static int unloadusr_common(const char *which)
         if (strcmp(which, "all") != 0 && strcmp(which, u->names[i]) != 0)
             continue;
         found = 1;
-        if (pid_alive(u->pids[i]))
+        if (hal_priv_pid_alive(u->pids[i]))
             kill(u->pids[i], SIGTERM);
     }
     /* Wait (up to 5 s) for them to leave HAL. */

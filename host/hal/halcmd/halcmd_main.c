@@ -179,6 +179,10 @@ int main(int argc, char **argv)
             printf("%s\n", st == 0 ? "none" : st == 1 ? "running" : "stale");
             return st;
         }
+        if (strcmp(a, "--session-rtapi-pid") == 0) {
+            printf("%d\n", hal_priv_session_rtapi_pid());
+            return 0;
+        }
         if (strcmp(a, "--session-rtapi-alive") == 0) {
             int fd = rtapi_client_connect(0);
             if (fd >= 0)

@@ -23,7 +23,7 @@ static void o(const char *fmt, ...)
         return;
     va_list ap;
     va_start(ap, fmt);
-    vfprintf(out, fmt, ap);
+    vfprintf(out ? out : stdout, fmt, ap);
     va_end(ap);
 }
 

@@ -163,6 +163,10 @@ const char *hal_priv_instance(void);
 void hal_priv_socket_name(char *buf, size_t len);
 /* 0: no segment, 1: segment exists and a process of it is alive, 2: stale. */
 int hal_priv_session_state(void);
+/* 1 when the process exists and is not a zombie. */
+int hal_priv_pid_alive(int pid);
+/* pid of the session's rtapi_app (0: none), without attaching. */
+int hal_priv_session_rtapi_pid(void);
 /* Terminate the session's rtapi_app and user components (halrun -U). */
 void hal_priv_session_kill(void);
 /* Remove the session's segment and rtapi shmem blocks (halrun -U, end of halrun). */

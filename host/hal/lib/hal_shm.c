@@ -199,11 +199,24 @@ void hal_priv_force_unlock(void)
     pthread_mutexattr_destroy(&attr);
 }
 
-static int pid_alive(int pid)
+/* Alive and not a zombie (a killed rtapi_app may stay a zombie for a
+ * while when its reaper is slow). */
+int hal_priv_pid_alive(int pid)
 {
     if (pid <= 0)
         return 0;
-    return kill(pid, 0) == 0 || errno == EPERM;
+    if (kill(pid, 0) != 0 && errno != EPERM)
+        return 0;
+    char path[64], buf[256];
+    snprintf(path, sizeof(path), "/proc/%d/stat", pid);
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return 1;
+    size_t n = fread(buf, 1, sizeof(buf) - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    const char *rp = strrchr(buf, ')');
+    return !(rp != NULL && rp[1] == ' ' && rp[2] == 'Z');
 }
 
 int hal_priv_session_state(void)
@@ -225,20 +238,40 @@ int hal_priv_session_state(void)
     int alive = 0;
     if (h->magic == HAL_SHM_MAGIC && h->version == HAL_SHM_VERSION &&
         h->size == (uint32_t)st.st_size) {
-        if (pid_alive(h->rtapi_pid))
+        if (hal_priv_pid_alive(h->rtapi_pid))
             alive = 1;
         /* Without the lock (it may be held by a dead process): the lists
          * are only walked to look for a live user component. */
         hal_off_t off = h->comp_list;
         for (int guard = 0; off != 0 && off < h->size && guard < 100000; guard++) {
             const hal_comp_t *c = (const hal_comp_t *)((const char *)p + off);
-            if (c->type == HAL_COMP_USER && c->pid != getpid() && pid_alive(c->pid))
+            if (c->type == HAL_COMP_USER && c->pid != getpid() && hal_priv_pid_alive(c->pid))
                 alive = 1;
             off = c->next;
         }
     }
     munmap(p, (size_t)st.st_size);
     return alive ? 1 : 2;
+}
+
+int hal_priv_session_rtapi_pid(void)
+{
+    int fd = shm_open(hal_priv_shm_name(), O_RDONLY, 0600);
+    if (fd < 0)
+        return 0;
+    struct stat st;
+    int pid = 0;
+    if (fstat(fd, &st) == 0 && (size_t)st.st_size >= sizeof(hal_hdr_t)) {
+        void *p = mmap(NULL, sizeof(hal_hdr_t), PROT_READ, MAP_SHARED, fd, 0);
+        if (p != MAP_FAILED) {
+            const hal_hdr_t *h = p;
+            if (h->magic == HAL_SHM_MAGIC)
+                pid = h->rtapi_pid;
+            munmap(p, sizeof(hal_hdr_t));
+        }
+    }
+    close(fd);
+    return pid;
 }
 
 void hal_priv_session_kill(void)
@@ -271,18 +304,18 @@ void hal_priv_session_kill(void)
     }
     munmap(p, (size_t)st.st_size);
     for (int i = 0; i < n; i++)
-        if (pid_alive(pids[i]))
+        if (hal_priv_pid_alive(pids[i]))
             kill(pids[i], SIGTERM);
     for (int t = 0; t < 200; t++) {
         int any = 0;
         for (int i = 0; i < n; i++)
-            any |= pid_alive(pids[i]);
+            any |= hal_priv_pid_alive(pids[i]);
         if (!any)
             return;
         usleep(10000);
     }
     for (int i = 0; i < n; i++)
-        if (pid_alive(pids[i]))
+        if (hal_priv_pid_alive(pids[i]))
             kill(pids[i], SIGKILL);
 }
 

@@ -221,8 +221,11 @@ static void *sim_main(void *arg)
         int running = hal_hdr->threads_running;
         long long now = hal_hdr->sim_time;
         if (running && !was_running) {
+            /* Threads keep their phase across stop/start, as a periodic
+             * timer would; only periods already in the past are skipped. */
             for (rt_thread_t *r = rt_threads; r; r = r->next)
-                r->next_due = now + r->t->period;
+                while (r->next_due <= now)
+                    r->next_due += r->t->period;
         }
         was_running = running;
         rt_thread_t *r = running ? sim_pick() : NULL;
