@@ -14,6 +14,7 @@
 #include "../check.h"
 #include "../../../host/driver/hostmot2/hm2_hal.h"
 #include "fake_hal.h"
+#include "hm2/boards.h"
 #include "hm2/test_patterns.h"
 #include "testlib.h"
 
@@ -136,6 +137,27 @@ static void test_names(void)
     CHECK(im.llio.hm2 == NULL);
     CHECK_EQ_INT(reg(0x0C00), 0); /* unload makes the watchdog bite */
     CHECK(tlog_find(&lg, "hm2/" PFX ": unregistered", 0) >= 0);
+}
+
+/* An EPP-style board (not threadsafe) has no read_gpio/write_gpio. */
+static void test_not_threadsafe(void)
+{
+    fake_hal_reset();
+    hm2_image_llio_init(&im, "hm2_7i43.0");
+    hm2_image_llio_set_board(&im, hm2_board_lookup("7i43"), 0);
+    struct t_firmware fw = {HM2_TEST_DATA "/PIN_SV8_48.csv", HM2_TEST_DATA "/PIN_SV8_48.modules.csv",
+                            "MESA7I43", 50000000, 100000000, 24, 2};
+    CHECK_EQ_INT(t_build_image(&im, &fw), 48);
+    CHECK_EQ_INT(do_register("num_encoders=2"), 0);
+    CHECK(fake_hal_find("hm2_7i43.0.read") != NULL);
+    CHECK(fake_hal_find("hm2_7i43.0.read_gpio") == NULL);
+    CHECK(fake_hal_find("hm2_7i43.0.write_gpio") == NULL);
+    CHECK_EQ_INT(fake_hal_count("hm2_7i43.0", FAKE_FUNCT), 4);
+    /* 50 MHz: TSDiv = 25 - 2, QFilterRate for 25 MHz = 50/25 - 2 = 0 */
+    CHECK_EQ_INT(reg(0x3200), 23);
+    CHECK_EQ_INT(reg(0x3400), 0);
+    CHECK_EQ_INT(*fake_u32("hm2_7i43.0.encoder.sample-frequency"), 25000000);
+    hm2_unregister_board(&im.llio);
 }
 
 static void test_load_registers(void)
@@ -617,6 +639,7 @@ static void test_random_corruption_full(void)
 int main(void)
 {
     RUN(test_names);
+    RUN(test_not_threadsafe);
     RUN(test_load_registers);
     RUN(test_gpio);
     RUN(test_watchdog_bite);
