@@ -34,6 +34,8 @@ EXPECT = {
     "loadrt siggen num_chan=17": "SIGGEN: ERROR: invalid number of channels: 17",
     "loadrt siggen num_chan=2 names=x,y": "num_chan= and names= are mutually exclusive",
     "loadrt or2 names=clash": "or2: ERROR: creating instance clash failed",
+    "loadrt and2 names=a,,b": "and2: ERROR: names: entry 2 is empty",
+    "loadrt conv_float_s32 names=bad name": "Unknown parameter `name'",
 }
 PINS = ["clash.in", "clash.out", "clash.time"]
 
