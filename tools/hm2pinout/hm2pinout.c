@@ -82,17 +82,6 @@ static int open_image(const char *arg, const struct hm2_board_info *b, int index
     return r;
 }
 
-static const char *pin_func_name(const struct hm2_pin *p, char *buf, size_t len)
-{
-    if (p->sec_tag == 0)
-        return "None";
-    const char *n = hm2_get_general_function_name(p->sec_tag);
-    if (n)
-        return n;
-    snprintf(buf, len, "(unknown-gtag-%d)", p->sec_tag);
-    return buf;
-}
-
 /* A .PIN-style listing of everything the firmware has (not limited by the
  * config string). */
 static void print_pin_file(hostmot2_t *hm2)
@@ -108,12 +97,8 @@ static void print_pin_file(hostmot2_t *hm2)
     printf("Modules in configuration:\n\n");
     for (int i = 0; i < hm2->num_mds; i++) {
         const struct hm2_md *md = &hm2->md[i];
-        const char *n = hm2_get_general_function_name(md->gtag);
         char unk[32];
-        if (!n) {
-            snprintf(unk, sizeof(unk), "(unknown-gtag-%d)", md->gtag);
-            n = unk;
-        }
+        const char *n = hm2_gtag_name(md->gtag, unk, sizeof(unk));
         printf("  Module: %s\n", n);
         printf("  There are %d of %s in configuration\n", md->instances, n);
         printf("  Version: %d\n", md->version);
@@ -148,7 +133,7 @@ static void print_pin_file(hostmot2_t *hm2)
             else
                 snprintf(chan, sizeof(chan), "%d", p->sec_unit);
             printf("%-8s%-8d%-13s%-16s%-10s%-16s%s\n", pn, i, "IOPort",
-                   pin_func_name(p, fbuf, sizeof(fbuf)), chan,
+                   hm2_gtag_name(p->sec_tag, fbuf, sizeof(fbuf)), chan,
                    hm2_get_pin_secondary_name(&copy, nbuf, sizeof(nbuf)),
                    (p->sec_pin & 0x80) ? "(Out)" : "(In)");
         }

@@ -275,12 +275,8 @@ int hm2_read_pin_descriptors(hostmot2_t *hm2)
 static void print_md(const hostmot2_t *hm2, int i)
 {
     const struct hm2_md *md = &hm2->md[i];
-    const char *name = hm2_get_general_function_name(md->gtag);
     char unk[32];
-    if (!name) {
-        snprintf(unk, sizeof(unk), "(unknown-gtag-%d)", md->gtag);
-        name = unk;
-    }
+    const char *name = hm2_gtag_name(md->gtag, unk, sizeof(unk));
     hm2_msg(hm2, HM2_PRINT, "Module Descriptor %d at 0x%04X:", i, md->addr);
     hm2_msg(hm2, HM2_PRINT, "    General Function Tag: %d (%s)", md->gtag, name);
     hm2_msg(hm2, HM2_PRINT, "    Version: %d", md->version);

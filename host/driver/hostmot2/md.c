@@ -150,14 +150,11 @@ static int accept_md(hostmot2_t *hm2, int i)
     const char *name = hm2_get_general_function_name(md->gtag);
 
     if (!rule) {
-        if (name) {
-            hm2_msg(hm2, HM2_WARN, "MD %d: %dx %s v%d: ignored", i, md->instances, name,
-                    md->version);
-        } else {
+        char unk[32];
+        if (!name)
             hm2_msg(hm2, HM2_WARN, "Firmware contains unknown function (gtag-%d)", md->gtag);
-            hm2_msg(hm2, HM2_WARN, "MD %d: %dx (unknown-gtag-%d) v%d: ignored", i, md->instances,
-                    md->gtag, md->version);
-        }
+        hm2_msg(hm2, HM2_WARN, "MD %d: %dx %s v%d: ignored", i, md->instances,
+                hm2_gtag_name(md->gtag, unk, sizeof(unk)), md->version);
         return 0;
     }
     struct hm2_module *m = module_slot(hm2, md->gtag);

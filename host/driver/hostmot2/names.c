@@ -40,6 +40,15 @@ const char *hm2_get_general_function_name(int gtag)
     }
 }
 
+const char *hm2_gtag_name(int gtag, char *buf, size_t len)
+{
+    const char *name = hm2_get_general_function_name(gtag);
+    if (name)
+        return name;
+    snprintf(buf, len, "(unknown-gtag-%d)", gtag);
+    return buf;
+}
+
 const char *hm2_get_hal_module_name(int gtag)
 {
     switch (gtag) {

@@ -230,6 +230,26 @@ static void test_corruptions(void)
     expect_fail(NULL, "IDROM ClockLow is 999999, that's too low, aborting driver load");
 }
 
+/* Descriptors the driver does not run are reported and skipped. */
+static void test_ignored_mds(void)
+{
+    int err;
+    t_setup_5i20(&im);
+    md_set(5, 0x01010063, 0x00017000, 0); /* gtag 99 */
+    hostmot2_t *hm2 = probe(NULL, &err);
+    CHECK(hm2 != NULL);
+    CHECK(tlog_find(&lg, "hm2/hm2_5i20.0: Firmware contains unknown function (gtag-99)", 0) >= 0);
+    CHECK(tlog_find(&lg, "hm2/hm2_5i20.0: MD 5: 1x (unknown-gtag-99) v0: ignored", 0) >= 0);
+    hm2_free(hm2);
+    t_setup_5i20(&im);
+    md_set(5, 0x010100C1, 0x10065A00, 0x3C); /* SSerial */
+    hm2 = probe(NULL, &err);
+    CHECK(hm2 != NULL);
+    CHECK(tlog_find(&lg, "hm2/hm2_5i20.0: MD 5: 1x Smart Serial Interface v0: ignored", 0) >= 0);
+    CHECK(!tlog_contains(&lg, "unknown function"));
+    hm2_free(hm2);
+}
+
 static void test_read_errors(void)
 {
     static const struct {
@@ -494,6 +514,7 @@ int main(void)
 {
     RUN(test_hm2_test_patterns);
     RUN(test_corruptions);
+    RUN(test_ignored_mds);
     RUN(test_read_errors);
     RUN(test_random_corruption);
     RUN(test_seed_5i20_report);

@@ -255,6 +255,8 @@ void hm2_print_modules(const hostmot2_t *hm2);
 
 /* Names (spec §6, §7). */
 const char *hm2_get_general_function_name(int gtag);
+/* The name, or "(unknown-gtag-N)" written to buf. */
+const char *hm2_gtag_name(int gtag, char *buf, size_t len);
 const char *hm2_get_pin_secondary_name(const struct hm2_pin *pin, char *buf, size_t len);
 /* HAL alias stem of a module output pin ("step", "out0", ...), NULL if none. */
 const char *hm2_get_pin_secondary_hal_name(const struct hm2_pin *pin);
