@@ -13,14 +13,14 @@ import sys
 from pathlib import Path
 
 here = Path(__file__).resolve().parent
-result = Path(sys.argv[1]).read_text().split("\n")
+session, _, sampled = Path(sys.argv[1]).read_text().partition("--- out.txt\n")
+result = session.split("\n")
 errors = []
 want = []
 for k, line in enumerate((here / "in.txt").read_text().splitlines()):
     s, f = line.split()
     want.append("%d %d %f " % (k, int(s), float(f)))
-got_file = here / "out.txt"
-got = got_file.read_text().split("\n")[:-1] if got_file.exists() else []
+got = sampled.split("\n")[:-1]
 if got != want:
     bad = next((i for i, (g, w) in enumerate(zip(got, want)) if g != w), min(len(got), len(want)))
     errors.append(f"out.txt differs from the model at line {bad} "

@@ -13,3 +13,6 @@ for i in $(seq 50); do
     [ "$(wc -l < out.txt 2>/dev/null)" = 1000 ] && break
     sleep 0.1
 done
+echo "--- out.txt"
+cat out.txt 2>/dev/null
+rm -f out.txt
