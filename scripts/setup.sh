@@ -24,6 +24,8 @@ DEB_PKGS=(
     libusb-1.0-0-dev
     make
     pkg-config
+    python3-dev
+    python3-venv
     clang
     valgrind
     yosys
