@@ -199,6 +199,33 @@ int main(int argc, char **argv)
             hal_priv_session_kill();
             return 0;
         }
+        if (strcmp(a, "--session-end") == 0) {
+            /* halrun's epilogue in one process: stop, unload all, wait
+             * for rtapi_app to leave, remove the session. */
+            if (hal_priv_session_state() == 0)
+                return 0;
+            int rc = 0;
+            if (hal_priv_attach() == 0) {
+                snprintf(hc.comp_name, sizeof(hc.comp_name), "halcmd%d", (int)getpid());
+                hc.comp_id = hal_init(hc.comp_name);
+                char *stop[] = {"stop", NULL};
+                char *unload[] = {"unload", "all", NULL};
+                if (halcmd_dispatch(1, stop))
+                    rc = 1;
+                if (halcmd_dispatch(2, unload))
+                    rc = 1;
+                if (hc.comp_id > 0)
+                    hal_exit(hc.comp_id);
+            }
+            for (int t = 0; t < 5000; t++) {
+                int pid = hal_priv_session_rtapi_pid();
+                if (pid <= 0 || !hal_priv_pid_alive(pid))
+                    break;
+                usleep(1000);
+            }
+            hal_priv_session_destroy();
+            return rc;
+        }
         if (strcmp(a, "--session-destroy") == 0) {
             hal_priv_session_destroy();
             return 0;

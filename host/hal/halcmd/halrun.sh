@@ -31,16 +31,6 @@ Session: HAL_INSTANCE=${HAL_INSTANCE:-0}
 EOF
 }
 
-wait_rtapi_exit() {
-    # rtapi_app leaves by itself once nothing is loaded.
-    local i
-    for i in $(seq 1 500); do
-        "$HALCMD" --session-rtapi-alive >/dev/null 2>&1 || return 0
-        sleep 0.01
-    done
-    return 1
-}
-
 INTERACTIVE=false
 filename=""
 inifile=""
@@ -99,8 +89,6 @@ if $INTERACTIVE; then
     "$HALCMD" "${args[@]}" -kf
 fi
 
-"$HALCMD" stop || result=$?
-"$HALCMD" unload all || result=$?
-wait_rtapi_exit
-"$HALCMD" --session-destroy
+# stop, unload all, wait for rtapi_app, remove the session
+"$HALCMD" --session-end || result=$?
 exit $result

@@ -86,21 +86,133 @@ void *hal_malloc(long size)
     return p;
 }
 
-/* ---- lookups --------------------------------------------------------------- */
+/* ---- name indexes and lists ------------------------------------------------ */
+/*
+ * Every kind of named object is on a list in show order (sorted by name;
+ * components and threads newest first) and in a hash index by name, so
+ * lookups and insertions stay cheap when a configuration has thousands of
+ * pins.  `next` and `hnext` are the first two fields of every indexed
+ * struct.
+ */
 
-#define FIND_BY_NAME(type, list, obj_name_expr)                   \
-    for (hal_off_t off = hal_hdr->list; off != 0;) {               \
-        type *o = SHMPTR(off);                                     \
-        if (strcmp(o->name, name) == 0)                            \
-            return o;                                              \
-        off = o->next;                                             \
-    }
+static const size_t name_offsets[6] = {
+    offsetof(hal_comp_t, name),  offsetof(hal_pin_t, name),   offsetof(hal_param_t, name),
+    offsetof(hal_sig_t, name),   offsetof(hal_funct_t, name), offsetof(hal_thread_t, name),
+};
 
-hal_comp_t *halpr_find_comp_by_name(const char *name)
+static hal_off_t *list_head(int kind)
 {
-    FIND_BY_NAME(hal_comp_t, comp_list, name);
+    switch (kind) {
+    case HAL_IDX_COMP: return &hal_hdr->comp_list;
+    case HAL_IDX_PIN: return &hal_hdr->pin_list;
+    case HAL_IDX_PARAM: return &hal_hdr->param_list;
+    case HAL_IDX_SIG: return &hal_hdr->sig_list;
+    case HAL_IDX_FUNCT: return &hal_hdr->funct_list;
+    default: return &hal_hdr->thread_list;
+    }
+}
+
+static uint32_t name_hash(const char *s)
+{
+    uint32_t h = 2166136261u; /* FNV-1a */
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * 16777619u;
+    return h & (HAL_HASH_SIZE - 1);
+}
+
+static const char *obj_name(int kind, void *obj) { return (const char *)obj + name_offsets[kind]; }
+static hal_off_t *obj_next(void *obj) { return (hal_off_t *)obj; }
+static hal_off_t *obj_hnext(void *obj) { return (hal_off_t *)obj + 1; }
+
+static void idx_add(int kind, void *obj)
+{
+    hal_off_t *bucket = (hal_off_t *)SHMPTR(hal_hdr->idx[kind]) + name_hash(obj_name(kind, obj));
+    *obj_hnext(obj) = *bucket;
+    *bucket = SHMOFF(obj);
+}
+
+static void idx_del(int kind, void *obj)
+{
+    hal_off_t *pp = (hal_off_t *)SHMPTR(hal_hdr->idx[kind]) + name_hash(obj_name(kind, obj));
+    hal_off_t target = SHMOFF(obj);
+    while (*pp != 0) {
+        if (*pp == target) {
+            *pp = *obj_hnext(obj);
+            return;
+        }
+        pp = obj_hnext(SHMPTR(*pp));
+    }
+}
+
+static void *idx_find(int kind, const char *name)
+{
+    hal_off_t off = ((hal_off_t *)SHMPTR(hal_hdr->idx[kind]))[name_hash(name)];
+    while (off != 0) {
+        void *o = SHMPTR(off);
+        if (strcmp(obj_name(kind, o), name) == 0)
+            return o;
+        off = *obj_hnext(o);
+    }
     return NULL;
 }
+
+/* Sorted insertion (strcmp order, like LinuxCNC's lists); components
+ * usually create names in order, so the last insertion point is tried
+ * first. */
+static void list_insert_sorted(int kind, void *obj)
+{
+    const char *name = obj_name(kind, obj);
+    hal_off_t *prev = list_head(kind);
+    hal_off_t hint = hal_hdr->hint[kind];
+    if (hint != 0 && strcmp(obj_name(kind, SHMPTR(hint)), name) < 0)
+        prev = obj_next(SHMPTR(hint));
+    while (*prev != 0) {
+        void *o = SHMPTR(*prev);
+        if (strcmp(obj_name(kind, o), name) > 0)
+            break;
+        prev = obj_next(o);
+    }
+    *obj_next(obj) = *prev;
+    *prev = SHMOFF(obj);
+    hal_hdr->hint[kind] = SHMOFF(obj);
+    idx_add(kind, obj);
+}
+
+/* Newest-first insertion (components, threads). */
+static void list_insert_front(int kind, void *obj)
+{
+    hal_off_t *head = list_head(kind);
+    *obj_next(obj) = *head;
+    *head = SHMOFF(obj);
+    idx_add(kind, obj);
+}
+
+static void list_remove(int kind, void *obj)
+{
+    hal_off_t target = SHMOFF(obj);
+    hal_off_t *prev = list_head(kind);
+    while (*prev != 0) {
+        if (*prev == target) {
+            *prev = *obj_next(obj);
+            break;
+        }
+        prev = obj_next(SHMPTR(*prev));
+    }
+    if (hal_hdr->hint[kind] == target)
+        hal_hdr->hint[kind] = 0;
+    idx_del(kind, obj);
+}
+
+/* Remove when the caller already holds the predecessor link. */
+static void list_remove_at(int kind, hal_off_t *prev, void *obj)
+{
+    *prev = *obj_next(obj);
+    if (hal_hdr->hint[kind] == SHMOFF(obj))
+        hal_hdr->hint[kind] = 0;
+    idx_del(kind, obj);
+}
+
+hal_comp_t *halpr_find_comp_by_name(const char *name) { return idx_find(HAL_IDX_COMP, name); }
 
 hal_comp_t *halpr_find_comp_by_id(int id)
 {
@@ -115,10 +227,12 @@ hal_comp_t *halpr_find_comp_by_id(int id)
 
 hal_pin_t *halpr_find_pin_by_name(const char *name)
 {
+    hal_pin_t *p = idx_find(HAL_IDX_PIN, name);
+    if (p != NULL || hal_hdr->active_aliases == 0)
+        return p;
+    /* by original name of an aliased pin */
     for (hal_off_t off = hal_hdr->pin_list; off != 0;) {
-        hal_pin_t *p = SHMPTR(off);
-        if (strcmp(p->name, name) == 0)
-            return p;
+        p = SHMPTR(off);
         if (p->oldname != 0 && strcmp(((hal_oldname_t *)SHMPTR(p->oldname))->name, name) == 0)
             return p;
         off = p->next;
@@ -128,10 +242,11 @@ hal_pin_t *halpr_find_pin_by_name(const char *name)
 
 hal_param_t *halpr_find_param_by_name(const char *name)
 {
+    hal_param_t *p = idx_find(HAL_IDX_PARAM, name);
+    if (p != NULL || hal_hdr->active_aliases == 0)
+        return p;
     for (hal_off_t off = hal_hdr->param_list; off != 0;) {
-        hal_param_t *p = SHMPTR(off);
-        if (strcmp(p->name, name) == 0)
-            return p;
+        p = SHMPTR(off);
         if (p->oldname != 0 && strcmp(((hal_oldname_t *)SHMPTR(p->oldname))->name, name) == 0)
             return p;
         off = p->next;
@@ -139,23 +254,9 @@ hal_param_t *halpr_find_param_by_name(const char *name)
     return NULL;
 }
 
-hal_sig_t *halpr_find_sig_by_name(const char *name)
-{
-    FIND_BY_NAME(hal_sig_t, sig_list, name);
-    return NULL;
-}
-
-hal_funct_t *halpr_find_funct_by_name(const char *name)
-{
-    FIND_BY_NAME(hal_funct_t, funct_list, name);
-    return NULL;
-}
-
-hal_thread_t *halpr_find_thread_by_name(const char *name)
-{
-    FIND_BY_NAME(hal_thread_t, thread_list, name);
-    return NULL;
-}
+hal_sig_t *halpr_find_sig_by_name(const char *name) { return idx_find(HAL_IDX_SIG, name); }
+hal_funct_t *halpr_find_funct_by_name(const char *name) { return idx_find(HAL_IDX_FUNCT, name); }
+hal_thread_t *halpr_find_thread_by_name(const char *name) { return idx_find(HAL_IDX_THREAD, name); }
 
 hal_data_u *halpr_pin_value(hal_pin_t *pin)
 {
@@ -169,34 +270,6 @@ void *halpr_param_value(hal_param_t *param) { return SHMPTR(param->data_ptr); }
 hal_data_u *halpr_sig_value(hal_sig_t *sig) { return SHMPTR(sig->data_ptr); }
 
 int halpr_next_id(void) { return hal_hdr->next_id++; }
-
-/* Sorted insertion by name (strcmp order, like LinuxCNC's lists). */
-static void insert_sorted(hal_off_t *head, void *obj, size_t name_offset)
-{
-    const char *name = (const char *)obj + name_offset;
-    hal_off_t *prev = head;
-    while (*prev != 0) {
-        char *o = SHMPTR(*prev);
-        if (strcmp(o + name_offset, name) > 0)
-            break;
-        prev = (hal_off_t *)o; /* `next` is the first field */
-    }
-    *(hal_off_t *)obj = *prev;
-    *prev = SHMOFF(obj);
-}
-
-static void unlink_from_list(hal_off_t *head, void *obj)
-{
-    hal_off_t target = SHMOFF(obj);
-    hal_off_t *prev = head;
-    while (*prev != 0) {
-        if (*prev == target) {
-            *prev = *(hal_off_t *)obj;
-            return;
-        }
-        prev = (hal_off_t *)SHMPTR(*prev);
-    }
-}
 
 static int check_name(const char *what, const char *name)
 {
@@ -235,8 +308,7 @@ static int comp_create_locked(const char *name, int type, int ready)
     c->pid = type == HAL_COMP_USER ? getpid() : 0;
     c->shmem_base = (uint64_t)(uintptr_t)hal_shmem_base;
     snprintf(c->name, sizeof(c->name), "%s", name);
-    c->next = hal_hdr->comp_list; /* newest first, as LinuxCNC lists them */
-    hal_hdr->comp_list = SHMOFF(c);
+    list_insert_front(HAL_IDX_COMP, c); /* newest first, as LinuxCNC lists them */
     hal_hdr->active_comps++;
     return c->id;
 }
@@ -383,7 +455,7 @@ int hal_signal_new(const char *name, hal_type_t type)
     memset(SHMPTR(data), 0, sizeof(hal_data_u));
     sig->type = type;
     snprintf(sig->name, sizeof(sig->name), "%s", name);
-    insert_sorted(&hal_hdr->sig_list, sig, offsetof(hal_sig_t, name));
+    list_insert_sorted(HAL_IDX_SIG, sig);
     hal_hdr->active_sigs++;
     hal_priv_unlock();
     return 0;
@@ -411,7 +483,7 @@ int hal_signal_delete(const char *name)
             unlink_pin_locked(p);
         off = p->next;
     }
-    unlink_from_list(&hal_hdr->sig_list, sig);
+    list_remove(HAL_IDX_SIG, sig);
     free_obj(sig, &hal_hdr->sig_free, &hal_hdr->recycled_sigs);
     hal_hdr->active_sigs--;
     hal_priv_unlock();
@@ -557,7 +629,7 @@ static int pin_new_locked(const char *name, hal_type_t type, hal_pin_dir_t dir,
     pin->dir = dir;
     snprintf(pin->name, sizeof(pin->name), "%s", name);
     set_pin_ptr(pin, &pin->dummysig);
-    insert_sorted(&hal_hdr->pin_list, pin, offsetof(hal_pin_t, name));
+    list_insert_sorted(HAL_IDX_PIN, pin);
     hal_hdr->active_pins++;
     return 0;
 }
@@ -662,9 +734,9 @@ static int alias_common(int is_pin, const char *orig, const char *alias)
         return -EPERM;
     }
     void *obj;
-    hal_off_t *oldname, *head;
+    hal_off_t *oldname;
     char *namefield;
-    size_t name_offset;
+    int kind = is_pin ? HAL_IDX_PIN : HAL_IDX_PARAM;
     if (is_pin) {
         hal_pin_t *p = halpr_find_pin_by_name(orig);
         obj = p;
@@ -672,8 +744,6 @@ static int alias_common(int is_pin, const char *orig, const char *alias)
             oldname = &p->oldname;
             namefield = p->name;
         }
-        head = &hal_hdr->pin_list;
-        name_offset = offsetof(hal_pin_t, name);
     } else {
         hal_param_t *p = halpr_find_param_by_name(orig);
         obj = p;
@@ -681,8 +751,6 @@ static int alias_common(int is_pin, const char *orig, const char *alias)
             oldname = &p->oldname;
             namefield = p->name;
         }
-        head = &hal_hdr->param_list;
-        name_offset = offsetof(hal_param_t, name);
     }
     if (obj == NULL) {
         hal_priv_unlock();
@@ -709,14 +777,14 @@ static int alias_common(int is_pin, const char *orig, const char *alias)
             *oldname = SHMOFF(on);
             hal_hdr->active_aliases++;
         }
-        unlink_from_list(head, obj);
+        list_remove(kind, obj);
         snprintf(namefield, HAL_NAME_LEN + 1, "%s", alias);
-        insert_sorted(head, obj, name_offset);
+        list_insert_sorted(kind, obj);
     } else if (*oldname != 0) {
         hal_oldname_t *on = SHMPTR(*oldname);
-        unlink_from_list(head, obj);
+        list_remove(kind, obj);
         snprintf(namefield, HAL_NAME_LEN + 1, "%s", on->name);
-        insert_sorted(head, obj, name_offset);
+        list_insert_sorted(kind, obj);
         *oldname = 0;
         free_obj(on, &hal_hdr->oldname_free, &hal_hdr->recycled_aliases);
         hal_hdr->active_aliases--;
@@ -762,7 +830,7 @@ static int param_new_locked(const char *name, hal_type_t type, hal_param_dir_t d
     p->type = type;
     p->dir = dir;
     snprintf(p->name, sizeof(p->name), "%s", name);
-    insert_sorted(&hal_hdr->param_list, p, offsetof(hal_param_t, name));
+    list_insert_sorted(HAL_IDX_PARAM, p);
     hal_hdr->active_params++;
     return 0;
 }
@@ -929,7 +997,7 @@ static void funct_delete_locked(hal_funct_t *f)
         }
         toff = t->next;
     }
-    unlink_from_list(&hal_hdr->funct_list, f);
+    list_remove(HAL_IDX_FUNCT, f);
     free_obj(f, &hal_hdr->funct_free, &hal_hdr->recycled_functs);
     hal_hdr->active_functs--;
 }
@@ -950,7 +1018,7 @@ static void comp_delete_locked(hal_comp_t *c)
         hal_pin_t *p = SHMPTR(*prev);
         if (p->owner == coff) {
             unlink_pin_locked(p);
-            *prev = p->next;
+            list_remove_at(HAL_IDX_PIN, prev, p);
             if (p->oldname != 0) {
                 free_obj(SHMPTR(p->oldname), &hal_hdr->oldname_free, &hal_hdr->recycled_aliases);
                 hal_hdr->active_aliases--;
@@ -965,7 +1033,7 @@ static void comp_delete_locked(hal_comp_t *c)
     while (*prev != 0) {
         hal_param_t *p = SHMPTR(*prev);
         if (p->owner == coff) {
-            *prev = p->next;
+            list_remove_at(HAL_IDX_PARAM, prev, p);
             if (p->oldname != 0) {
                 free_obj(SHMPTR(p->oldname), &hal_hdr->oldname_free, &hal_hdr->recycled_aliases);
                 hal_hdr->active_aliases--;
@@ -976,7 +1044,7 @@ static void comp_delete_locked(hal_comp_t *c)
             prev = &p->next;
         }
     }
-    unlink_from_list(&hal_hdr->comp_list, c);
+    list_remove(HAL_IDX_COMP, c);
     free_obj(c, &hal_hdr->comp_free, &hal_hdr->recycled_comps);
     hal_hdr->active_comps--;
 }
@@ -1114,7 +1182,7 @@ int hal_export_funct(const char *name, void (*funct)(void *, long), void *arg, i
     f->maxtime = SHMOFF(&st->maxtime);
     f->maxtime_increased = SHMOFF(&st->maxtime_increased);
     snprintf(f->name, sizeof(f->name), "%s", name);
-    insert_sorted(&hal_hdr->funct_list, f, offsetof(hal_funct_t, name));
+    list_insert_sorted(HAL_IDX_FUNCT, f);
     hal_hdr->active_functs++;
     /* Cannot fail now: names were checked, memory is all that is left. */
     rc = pin_new_locked(pname, HAL_S32, HAL_OUT, (void **)&st->runtime, comp_id);
@@ -1221,12 +1289,11 @@ int hal_create_thread(const char *name, unsigned long period_nsec, int uses_fp)
         rc = param_new_locked(tname, HAL_S32, HAL_RW, &st->maxtime, comp_id);
     if (rc == 0) {
         halpr_find_comp_by_id(comp_id)->ready = 1;
-        t->next = hal_hdr->thread_list; /* newest (slowest) first */
-        hal_hdr->thread_list = SHMOFF(t);
+        list_insert_front(HAL_IDX_THREAD, t); /* newest (slowest) first */
         hal_hdr->active_threads++;
         rc = thread_hooks->thread_created(t);
         if (rc != 0) {
-            hal_hdr->thread_list = t->next;
+            list_remove(HAL_IDX_THREAD, t);
             hal_hdr->active_threads--;
         }
     }
@@ -1271,7 +1338,7 @@ int hal_thread_delete(const char *name)
     hal_comp_t *c = halpr_find_comp_by_id(t->comp_id);
     if (c != NULL)
         comp_delete_locked(c);
-    unlink_from_list(&hal_hdr->thread_list, t);
+    list_remove(HAL_IDX_THREAD, t);
     free_obj(t, &hal_hdr->thread_free, &hal_hdr->recycled_threads);
     hal_hdr->active_threads--;
     if (hal_hdr->thread_list == 0)

@@ -27,7 +27,8 @@ extern "C" {
 typedef uint32_t hal_off_t;
 
 #define HAL_SHM_MAGIC 0x484d4832u /* "HMH2" */
-#define HAL_SHM_VERSION 3u
+#define HAL_SHM_VERSION 4u
+#define HAL_HASH_SIZE 4096u /* buckets per name index (power of 2) */
 #define HAL_DEFAULT_SHM_SIZE (8u * 1024u * 1024u)
 #define HAL_ARGS_LEN 256
 
@@ -35,6 +36,7 @@ typedef enum { HAL_COMP_USER = 0, HAL_COMP_RT = 1 } hal_comp_type_t;
 
 typedef struct {
     hal_off_t next;
+    hal_off_t hnext; /* next in the name index bucket */
     int id;
     int type;  /* hal_comp_type_t */
     int ready; /* 0 initializing, 1 ready */
@@ -52,6 +54,7 @@ typedef struct {
 
 typedef struct {
     hal_off_t next;
+    hal_off_t hnext; /* next in the name index bucket */
     hal_off_t data_ptr_addr; /* the owner's pointer variable (in shm) */
     hal_off_t owner;         /* hal_comp_t */
     hal_off_t signal;        /* hal_sig_t or 0 */
@@ -64,6 +67,7 @@ typedef struct {
 
 typedef struct {
     hal_off_t next;
+    hal_off_t hnext; /* next in the name index bucket */
     hal_off_t data_ptr; /* hal_data_u storage (hal_malloc'd) */
     int type;
     int readers;
@@ -74,6 +78,7 @@ typedef struct {
 
 typedef struct {
     hal_off_t next;
+    hal_off_t hnext; /* next in the name index bucket */
     hal_off_t data_ptr; /* the owner's variable */
     hal_off_t owner;
     hal_off_t oldname;
@@ -84,6 +89,7 @@ typedef struct {
 
 typedef struct {
     hal_off_t next;
+    hal_off_t hnext; /* next in the name index bucket */
     hal_off_t owner;
     int uses_fp;
     int reentrant;
@@ -103,6 +109,7 @@ typedef struct {
 
 typedef struct {
     hal_off_t next;
+    hal_off_t hnext; /* next in the name index bucket */
     int uses_fp;
     int comp_id;
     long period;
@@ -137,11 +144,17 @@ typedef struct {
     hal_off_t comp_list, pin_list, param_list, sig_list, funct_list, thread_list;
     hal_off_t comp_free, pin_free, param_free, sig_free, funct_free, thread_free;
     hal_off_t funct_entry_free, oldname_free;
+    /* name indexes: offsets of HAL_HASH_SIZE-bucket arrays, and the last
+     * object inserted in each sorted list (insertion hint) */
+    hal_off_t idx[6];
+    hal_off_t hint[6];
     int active_comps, active_pins, active_params, active_aliases, active_sigs,
         active_functs, active_threads;
     int recycled_comps, recycled_pins, recycled_params, recycled_aliases, recycled_sigs,
         recycled_functs, recycled_threads;
 } hal_hdr_t;
+
+enum { HAL_IDX_COMP, HAL_IDX_PIN, HAL_IDX_PARAM, HAL_IDX_SIG, HAL_IDX_FUNCT, HAL_IDX_THREAD };
 
 /* ---- per-process view ---------------------------------------------------- */
 

@@ -89,6 +89,11 @@ static int init_segment(char *base, size_t size)
     h->hdr_size = (uint32_t)((sizeof(*h) + 63) & ~(size_t)63);
     h->bot = h->hdr_size;
     h->top = (uint32_t)size;
+    for (int i = 0; i < 6; i++) {
+        h->idx[i] = h->bot;
+        memset(base + h->bot, 0, HAL_HASH_SIZE * sizeof(hal_off_t));
+        h->bot += HAL_HASH_SIZE * sizeof(hal_off_t);
+    }
     /* id 1 is the session itself (LinuxCNC's rtapi master takes it). */
     h->next_id = 2;
     h->msg_level = -1;

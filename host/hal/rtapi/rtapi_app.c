@@ -83,10 +83,13 @@ typedef struct rt_thread {
     pthread_t tid;
     volatile int stop;
     int busy; /* sim scheduler is running it (guarded by rt_lock) */
+    volatile int in_cycle;          /* wall clock: inside a period */
+    volatile unsigned long cycles;  /* wall clock: periods begun */
     uint32_t gen;
     int nentries;
     rt_entry_t *entries;
     long long next_due; /* simulated clock */
+    unsigned tick;      /* periods since functions were last timed */
     int order;
 } rt_thread_t;
 
@@ -134,15 +137,27 @@ static void rebuild(rt_thread_t *rt)
     rt->gen = gen;
 }
 
-/* One period of one thread: the hot path. */
+/* One period of one thread: the hot path.  The thread's own time is
+ * measured every period; the functions' .time/.tmax every `timing_every`
+ * periods (HAL_TIMING_EVERY, default 16; 1 = every period as LinuxCNC, 0 =
+ * never), because reading the time-stamp counter around every function
+ * costs more than calling a small function. */
+static unsigned timing_every = 16;
+
 static inline void run_cycle(rt_thread_t *rt, int measure)
 {
     if (__builtin_expect(__atomic_load_n(&rt->t->gen, __ATOMIC_ACQUIRE) != rt->gen, 0))
         rebuild(rt);
     const long period = rt->t->period;
     rt_entry_t *e = rt->entries, *end = e + rt->nentries;
-    if (measure) {
-        long long start = rtapi_get_clocks(), t0 = start;
+    if (!measure) {
+        for (; e < end; e++)
+            e->funct(e->arg, period);
+        return;
+    }
+    long long t0 = rtapi_get_clocks(), start = t0;
+    if (timing_every != 0 && ++rt->tick >= timing_every) {
+        rt->tick = 0;
         for (; e < end; e++) {
             e->funct(e->arg, period);
             long long now = rtapi_get_clocks();
@@ -156,16 +171,17 @@ static inline void run_cycle(rt_thread_t *rt, int measure)
             }
             start = now;
         }
-        hal_s32_t total = (hal_s32_t)(start - t0);
-        hal_s32_t **rtp = SHMPTR(rt->t->runtime);
-        **rtp = total;
-        hal_s32_t *mx = SHMPTR(rt->t->maxtime);
-        if (total > *mx)
-            *mx = total;
     } else {
         for (; e < end; e++)
             e->funct(e->arg, period);
+        start = rtapi_get_clocks();
     }
+    hal_s32_t total = (hal_s32_t)(start - t0);
+    hal_s32_t **rtp = SHMPTR(rt->t->runtime);
+    **rtp = total;
+    hal_s32_t *mx = SHMPTR(rt->t->maxtime);
+    if (total > *mx)
+        *mx = total;
 }
 
 static void *wall_thread_main(void *arg)
@@ -185,8 +201,15 @@ static void *wall_thread_main(void *arg)
             ;
         if (rt->stop)
             break;
-        if (hal_hdr->threads_running)
+        if (hal_hdr->threads_running) {
+            /* in_cycle is set before the generation check in run_cycle,
+             * so quiesce() can tell whether this period may still use a
+             * function list from before a change. */
+            __atomic_store_n(&rt->in_cycle, 1, __ATOMIC_SEQ_CST);
             run_cycle(rt, 1);
+            __atomic_add_fetch(&rt->cycles, 1, __ATOMIC_SEQ_CST);
+            __atomic_store_n(&rt->in_cycle, 0, __ATOMIC_SEQ_CST);
+        }
         /* Overrun by more than a period: resynchronise instead of
          * running a burst of late periods. */
         struct timespec now;
@@ -267,6 +290,7 @@ static int hook_thread_created(hal_thread_t *t)
         return -ENOMEM;
     rt->t = t;
     rt->gen = (uint32_t)-1;
+    rt->tick = timing_every ? timing_every - 1 : 0; /* time the first period */
     rt->order = rt_order++;
     if (simclock) {
         pthread_mutex_lock(&rt_lock);
@@ -343,18 +367,19 @@ static void quiesce(void)
         pthread_mutex_unlock(&rt_lock);
         return;
     }
-    /* Wall clock: a period never takes longer than the longest thread
-     * period plus the time its functions run; wait two of them. */
-    long maxp = 0;
+    /* Wall clock: the function lists were changed (generation bumped)
+     * before we got here; a thread not inside a period will rebuild before
+     * calling anything, one inside a period is waited for. */
     pthread_mutex_lock(&rt_lock);
-    for (rt_thread_t *r = rt_threads; r; r = r->next)
-        if (r->t->period > maxp)
-            maxp = r->t->period;
-    pthread_mutex_unlock(&rt_lock);
-    if (maxp > 0) {
-        struct timespec ts = {(2 * maxp) / 1000000000L, (2 * maxp) % 1000000000L};
-        nanosleep(&ts, NULL);
+    for (rt_thread_t *r = rt_threads; r; r = r->next) {
+        unsigned long c = __atomic_load_n(&r->cycles, __ATOMIC_SEQ_CST);
+        while (__atomic_load_n(&r->in_cycle, __ATOMIC_SEQ_CST) &&
+               __atomic_load_n(&r->cycles, __ATOMIC_SEQ_CST) == c) {
+            struct timespec ts = {0, 20000};
+            nanosleep(&ts, NULL);
+        }
     }
+    pthread_mutex_unlock(&rt_lock);
 }
 
 /* ---- modules ------------------------------------------------------------------- */
@@ -847,6 +872,13 @@ int main(int argc, char **argv)
     hal_priv_set_thread_hooks(&thread_hooks);
     hal_hdr->rtapi_pid = getpid();
     simclock = hal_hdr->simclock;
+    const char *te = getenv("HAL_TIMING_EVERY");
+    if (te != NULL && *te) {
+        char *end;
+        unsigned long v = strtoul(te, &end, 10);
+        if (*end == '\0' && v <= 1000000)
+            timing_every = (unsigned)v;
+    }
     if (simclock) {
         if (pthread_create(&sim_tid, NULL, sim_main, NULL) != 0) {
             fprintf(stderr, "rtapi_app: cannot start the simulated-clock scheduler\n");
