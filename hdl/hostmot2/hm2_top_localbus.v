@@ -12,8 +12,8 @@ module hm2_top_localbus #(
     parameter integer NUM_LEDS       = 2,
     parameter integer NUM_STEPGEN    = 1,
     parameter integer SG_TABLE_WIDTH = 2,
-    parameter integer NUM_ENCODER    = 0,
-    parameter integer NUM_PWMGEN     = 0,
+    parameter integer NUM_ENCODER    = 1,
+    parameter integer NUM_PWMGEN     = 1,
     parameter integer CLOCK_LOW_HZ   = 33333333,  // ClockLow (encoder filter reset value)
     parameter [15:0]  WD_BASE        = 16'h0C00,
     parameter [15:0]  IO_BASE        = 16'h1000,

@@ -419,6 +419,26 @@ async def top_routing_every_instance(dut) -> None:
                     assert steps == 0, f"StepGen {u} stepped while {i} was running"
             await fw.bus.write(fw.reg("StepGen", 0, i), 0)
             await ClockCycles(dut.clk_low, 20)
+        # Table pins: a one-entry table of all ones on instance i holds
+        # every output of i high (table mode), the others stay low.
+        tw = fw.doc["firmware"]["stepgen_table_width"]
+        tabs = [of("StepGen", f"Table{k}") for k in range(2, tw)]
+        if tabs:
+            await fw.module_outputs([p for tab in tabs for p in tab.values()])
+            for i in range(n):
+                await fw.bus.write(fw.reg("StepGen", 8, i), 0)  # length 1
+                await fw.bus.write(fw.reg("StepGen", 7, i), (1 << tw) - 1)
+                await fw.bus.write(fw.reg("StepGen", 2, i), 3)  # table mode
+                await ClockCycles(dut.clk_low, 10)
+                out = int(dut.io_out.value)
+                for u in range(n):
+                    got = [out >> tab[u] & 1 for tab in tabs]
+                    assert got == [int(u == i)] * len(tabs), f"StepGen {u} table pins {got}"
+                    assert out >> st[u] & 1 == int(u == i)
+                    if u == i:
+                        assert out >> di[u] & 1 == 1
+                await fw.bus.write(fw.reg("StepGen", 2, i), 0)
+                await fw.bus.write(fw.reg("StepGen", 7, i), 0)
     assert int(dut.io_oe.value) & ~full == 0
     assert fw.board.contention == 0
 
