@@ -33,10 +33,10 @@ net rect    abs.0.out       => sum2.0.in0
 net square  siggen.0.square => sum2.0.in1
 net total   sum2.0.out      => conv-float-s32.0.in
 net counts  conv-float-s32.0.out
-loadusr -w echo "--- after 5 ms of virtual time:"
+loadusr -w echo --- after 5 ms of virtual time:
 simrun 5ms
 show sig
-loadusr -w echo "--- after 2 ms more:"
+loadusr -w echo --- after 2 ms more:
 simrun 2ms
 show sig
 show thread
