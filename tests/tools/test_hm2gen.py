@@ -322,7 +322,7 @@ def test_idrom_type3_layout(tmp_path: Path) -> None:
 def test_build_outputs_current() -> None:
     """The build (tools/CMakeLists.txt) leaves every firmware's outputs in
     $HM_BUILD/generated/<board>/<name>/, equal to what the descriptions give
-    now, and the generated tops pass Verilator's -Wall lint."""
+    now, and the generated tops pass Verilator's -Wall lint and Icarus -Wall."""
     import os
     import shutil
 
@@ -341,3 +341,10 @@ def test_build_outputs_current() -> None:
                                 "--top-module", top, "-y", str(HM2), "-y", str(ROOT / "hdl" / "common"),
                                 f"-I{d}", str(d / f"{top}.v")], capture_output=True, text=True)
             assert r.returncode == 0, r.stdout + r.stderr
+        if shutil.which("iverilog"):
+            top = fw.top_module
+            r = subprocess.run(["iverilog", "-g2005", "-Wall", "-Wno-timescale", "-s", top,
+                                "-y", str(HM2), "-y", str(ROOT / "hdl" / "common"), f"-I{d}",
+                                "-o", os.devnull, str(d / f"{top}.v")],
+                               capture_output=True, text=True)
+            assert r.returncode == 0 and "warning" not in r.stderr.lower(), r.stderr
