@@ -261,7 +261,8 @@ BAD = [
     ('"StepGen 0 Step"', '"StepGen zero Step"', "cannot parse"),
     ('"GPIO", "GPIO"],\n]', '"GPIO", "GPIO", "GPIO"],\n]', "too many pins on port 1"),
     ('"GPIO", "GPIO"],\n]', '"GPIO"],\n]', "lists 16 pins, port width is 17"),
-    ('type = "Watchdog"\ninstances = 1\n', 'type = "Widget"\ninstances = 1\n', "unknown module 'Widget'"),
+    ('type = "Watchdog"\ninstances = 1\n', 'type = "Widget"\ninstances = 1\n',
+     "unknown module 'Widget'"),
     ('type = "Watchdog"\ninstances = 1\n', 'type = "LED"\ninstances = 1\n', "has no Watchdog"),
     ('type = "StepGen"\ninstances = 1', 'type = "StepGen"\ninstances = 65', "out of range 1..64"),
     ('type = "StepGen"\ninstances = 1', 'type = "StepGen"\ninstances = 1\n[[modules]]\n'
@@ -287,7 +288,8 @@ def test_too_many_pins_on_board(tmp_path: Path) -> None:
     boards = tmp_path / "boards"
     boards.mkdir()
     text = (HM2 / "boards" / "5i20.toml").read_text()
-    (boards / "big.toml").write_text(text.replace('"P2", "P3", "P4"', '"A", "B", "C", "D", "E", "F", "G"')
+    seven = '"A", "B", "C", "D", "E", "F", "G"'
+    (boards / "big.toml").write_text(text.replace('"P2", "P3", "P4"', seven)
                                      .replace('name = "5i20"', 'name = "big"'))
     fw = _write(tmp_path, GOOD.replace('board = "5i25"', 'board = "big"'))
     with pytest.raises(DescriptionError, match="too many pins: 168 I/O pins"):
@@ -297,9 +299,11 @@ def test_too_many_pins_on_board(tmp_path: Path) -> None:
 def test_cli_error_writes_nothing(tmp_path: Path) -> None:
     good = _write(tmp_path, GOOD)
     bad = tmp_path / "firmware" / "x" / "U.toml"
-    bad.write_text(GOOD.replace('name = "T"', 'name = "U"').replace('"StepGen 0 Step"', '"Nope 0 A"'))
+    bad.write_text(GOOD.replace('name = "T"', 'name = "U"')
+                   .replace('"StepGen 0 Step"', '"Nope 0 A"'))
     out = tmp_path / "out"
-    r = subprocess.run([sys.executable, "-m", "hm2gen", "--boards", str(HM2 / "boards"), "-o", str(out),
+    r = subprocess.run([sys.executable, "-m", "hm2gen", "--boards", str(HM2 / "boards"),
+                        "-o", str(out),
                         str(good), str(bad)], cwd=ROOT / "tools", capture_output=True, text=True)
     assert r.returncode == 1
     assert "hm2gen: error:" in r.stderr and "unknown module 'Nope'" in r.stderr
@@ -338,7 +342,8 @@ def test_build_outputs_current() -> None:
         if shutil.which("verilator"):
             top = fw.top_module
             r = subprocess.run(["verilator", "--lint-only", "-Wall", "-Wno-DECLFILENAME",
-                                "--top-module", top, "-y", str(HM2), "-y", str(ROOT / "hdl" / "common"),
+                                "--top-module", top, "-y", str(HM2),
+                                "-y", str(ROOT / "hdl" / "common"),
                                 f"-I{d}", str(d / f"{top}.v")], capture_output=True, text=True)
             assert r.returncode == 0, r.stdout + r.stderr
         if shutil.which("iverilog"):

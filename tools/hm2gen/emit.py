@@ -82,7 +82,8 @@ def verilog_include(fw: Firmware) -> str:
 
 
 _PARAMS = ("IOPORTS", "PORTWIDTH", "NUM_LEDS", "NUM_STEPGEN", "SG_TABLE_WIDTH", "NUM_ENCODER",
-           "NUM_PWMGEN", "CLOCK_LOW_HZ", "WD_BASE", "IO_BASE", "LED_BASE", "SG_BASE", "ENC_BASE", "PWM_BASE",
+           "NUM_PWMGEN", "CLOCK_LOW_HZ", "WD_BASE", "IO_BASE", "LED_BASE", "SG_BASE",
+           "ENC_BASE", "PWM_BASE",
            "IDROM", "ALT_SRC", "ENC_SRC")
 
 
@@ -117,7 +118,8 @@ def verilog_top(fw: Firmware) -> str:
         ]
         bus_conn = ["        .epp_d_i(epp_d_i), .epp_d_o(epp_d_o), .epp_d_oe(epp_d_oe),",
                     "        .epp_nwrite(epp_nwrite), .epp_ndatastr(epp_ndatastr),",
-                    "        .epp_naddrstr(epp_naddrstr), .epp_nwait(epp_nwait), .reconfig(reconfig),"]
+                    "        .epp_naddrstr(epp_naddrstr), .epp_nwait(epp_nwait),",
+                    "        .reconfig(reconfig),"]
         wrapper = "hm2_top_epp"
     params = ",\n".join(f"        .{p}(HM2_{p})" for p in _PARAMS)
     return "\n".join([

@@ -165,7 +165,8 @@ def load_board(path: Path) -> Board:
     if b.clock_high < b.clock_low:
         raise _err(path, "clock_high must not be slower than clock_low")
     if b.io_width > MAX_IOWIDTH:
-        raise _err(path, f"too many pins: {b.io_width} I/O pins, the firmware maximum is {MAX_IOWIDTH}")
+        raise _err(path, f"too many pins: {b.io_width} I/O pins, "
+                         f"the firmware maximum is {MAX_IOWIDTH}")
     if not 0 <= b.leds <= 32:
         raise _err(path, f"leds {b.leds} out of range 0..32")
     return b

@@ -406,7 +406,8 @@ async def top_routing_every_instance(dut) -> None:
         await fw.bus.write(fw.reg("StepGen", 9), 0xFFFFFFFF)
         for i in range(n):
             for u in range(n):
-                await fw.bus.write(fw.reg("StepGen", 0, u), ((-1) << 26) & 0xFFFFFFFF if u == i else 0)
+                rate = ((-1) << 26) & 0xFFFFFFFF if u == i else 0
+                await fw.bus.write(fw.reg("StepGen", 0, u), rate)
             log = VectorLog(dut.io_out).start()
             await ClockCycles(dut.clk_low, 400)
             log.stop()
