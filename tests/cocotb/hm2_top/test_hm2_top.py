@@ -33,9 +33,9 @@ from common.runner import BUILD, HDL, ROOT, SIMULATORS, run
 # model big enough to be split into several C++ files (VM_PARALLEL_BUILDS=1,
 # the 7i43 tops) fails to compile ("Vtop__pch.h.fast: linker input file not
 # found").  Keeping the model in one file per class avoids the precompiled
-# header path.  To be removed once common/runner.py works around it for all.
-if "--output-split" not in _runner._VERILATOR_ARGS:
-    _runner._VERILATOR_ARGS = (*_runner._VERILATOR_ARGS, "--output-split", "0")
+# header path.  Applied only around this file's builds; to be removed once
+# common/runner.py works around it for everyone.
+_SPLIT_ARGS = ("--output-split", "0")
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
@@ -465,6 +465,11 @@ def test_hm2_top(board: str, name: str, sim: str) -> None:
     g = _generate(board, name)
     sources = [g["top"], *sorted((HDL / "hostmot2").glob("hm2_*.v")),
                *sorted((HDL / "common").glob("*.v"))]
-    run(sim=sim, toplevel=g["module"], sources=sources, includes=[g["dir"]],
-        test_module="test_hm2_top", test_dir=HERE,
-        extra_env={"HM2_FW_JSON": str(g["json"])})
+    saved = _runner._VERILATOR_ARGS
+    _runner._VERILATOR_ARGS = (*saved, *_SPLIT_ARGS)
+    try:
+        run(sim=sim, toplevel=g["module"], sources=sources, includes=[g["dir"]],
+            test_module="test_hm2_top", test_dir=HERE,
+            extra_env={"HM2_FW_JSON": str(g["json"])})
+    finally:
+        _runner._VERILATOR_ARGS = saved
