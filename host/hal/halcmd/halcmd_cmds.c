@@ -1104,12 +1104,13 @@ static int do_setexact_cmd(int argc, char **argv)
         hal_hdr->exact_for_test = 1;
     hal_priv_unlock();
     if (have_threads) {
-        halcmd_error("HAL: ERROR: Cannot set exact base period: threads already exist\n");
+        halcmd_error("HAL_LIB: Cannot run 'setexact' after a thread has been created\n");
         return -EINVAL;
     }
-    rtapi_print_msg(RTAPI_MSG_ERR,
-                    "HAL_LIB: HAL will pretend that the exact base period requested is possible.\n"
-                    "This mode is not suitable for running real hardware.\n");
+    /* Periods are used exactly anyway in this implementation; the flag is
+     * kept for compatibility (and reported like LinuxCNC). */
+    halcmd_error("Warning: HAL_LIB: HAL will pretend that the exact base period requested "
+                 "is possible.\nThis mode is not suitable for running real hardware.\n");
     return 0;
 }
 
@@ -1125,7 +1126,7 @@ typedef struct {
 static const cmd_t commands[] = {
     {"addf", do_addf_cmd, 2, 3, "addf functname threadname [position]"},
     {"alias", do_alias_cmd, 3, 3, "alias pin|param name alias"},
-    {"debug", do_debug_cmd, 0, 1, "debug [level 0..5]"},
+    {"debug", do_debug_cmd, 1, 1, "debug level (0 none, 1 errors, 2 warnings, 3 info, 4 debug, 5 all)"},
     {"delf", do_delf_cmd, 2, 2, "delf functname threadname"},
     {"delsig", do_delsig_cmd, 1, 1, "delsig signame|all"},
     {"echo", do_echo_cmd, 0, 0, "echo"},

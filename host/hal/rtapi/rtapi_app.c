@@ -390,7 +390,18 @@ typedef struct module {
     void *handle;
     int ncomps;
     int comp_ids[64];
+    char **strings; /* string parameter values given to the module */
+    int nstrings;
 } module_t;
+
+static void free_strings(module_t *m)
+{
+    for (int i = 0; i < m->nstrings; i++)
+        free(m->strings[i]);
+    free(m->strings);
+    m->strings = NULL;
+    m->nstrings = 0;
+}
 
 static module_t *modules;
 
@@ -442,7 +453,7 @@ static int parse_long(const char *s, long *out)
 }
 
 /* Set one module parameter key=value; messages as LinuxCNC's rtapi_app. */
-static int set_param(void *handle, const char *arg)
+static int set_param(void *handle, const char *arg, module_t *m)
 {
     const char *eq = strchr(arg, '=');
     char key[128];
@@ -517,12 +528,18 @@ static int set_param(void *handle, const char *arg)
         else if (type == 'l')
             ((long *)addr)[i] = lv[i];
         else {
-            /* The string lives as long as rtapi_app (like LinuxCNC). */
+            /* The string lives as long as the module is loaded. */
             char *s = strdup(items[i]);
-            if (s == NULL) {
+            char **v = realloc(m->strings, sizeof(char *) * (size_t)(m->nstrings + 1));
+            if (s == NULL || v == NULL) {
+                free(s);
+                if (v != NULL)
+                    m->strings = v;
                 free(copy);
                 return -ENOMEM;
             }
+            m->strings = v;
+            m->strings[m->nstrings++] = s;
             ((char **)addr)[i] = s;
         }
     }
@@ -568,16 +585,18 @@ static int do_load(int argc, char **argv)
         dlclose(h);
         return -ENOENT;
     }
-    for (int i = 2; i < argc; i++) {
-        if (set_param(h, argv[i]) != 0) {
-            dlclose(h);
-            return -EINVAL;
-        }
-    }
     module_t *m = calloc(1, sizeof(*m));
     if (m == NULL) {
         dlclose(h);
         return -ENOMEM;
+    }
+    for (int i = 2; i < argc; i++) {
+        if (set_param(h, argv[i], m) != 0) {
+            dlclose(h);
+            free_strings(m);
+            free(m);
+            return -EINVAL;
+        }
     }
     int before[1024];
     int nbefore = comp_ids_snapshot(before, 1024);
@@ -597,6 +616,7 @@ static int do_load(int argc, char **argv)
         }
         quiesce();
         dlclose(h);
+        free_strings(m);
         free(m);
         return rc;
     }
@@ -673,6 +693,7 @@ static int unload_module(module_t *m)
     while (*pp != m)
         pp = &(*pp)->next;
     *pp = m->next;
+    free_strings(m);
     free(m);
     return 0;
 }
