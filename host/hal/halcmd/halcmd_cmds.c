@@ -716,45 +716,62 @@ static int link_ps(const char *pin, const char *sig)
     return rc;
 }
 
+/* LinuxCNC 2.9 takes exactly two words (no arrow) for linkps/linksp. */
 static int do_linkps_cmd(int argc, char **argv)
 {
-    /* linkps pin [arrow] sig */
-    if (argc == 4 && !is_arrow(argv[2])) {
-        halcmd_error("linkps: '%s' is not an arrow\n", argv[2]);
-        return -EINVAL;
-    }
-    return link_ps(argv[1], argv[argc - 1]);
+    (void)argc;
+    return link_ps(argv[1], argv[2]);
 }
 
 static int do_linksp_cmd(int argc, char **argv)
 {
-    if (argc == 4 && !is_arrow(argv[2])) {
-        halcmd_error("linksp: '%s' is not an arrow\n", argv[2]);
-        return -EINVAL;
-    }
-    return link_ps(argv[argc - 1], argv[1]);
+    (void)argc;
+    return link_ps(argv[2], argv[1]);
 }
 
+/* linkpp P1 P2: a signal named like P1 linking both pins (deprecated in
+ * LinuxCNC 2.9, which warns).  All checks first; nothing is made on error. */
 static int do_linkpp_cmd(int argc, char **argv)
 {
-    if (argc == 4 && !is_arrow(argv[2])) {
-        halcmd_error("linkpp: '%s' is not an arrow\n", argv[2]);
+    (void)argc;
+    const char *p1 = argv[1], *p2 = argv[2];
+    halcmd_error("Warning: linkpp command is deprecated, use 'net'\n");
+    hal_q_pin_t a, b;
+    if (hal_q_pin(p1, &a) != 0 || hal_q_pin(p2, &b) != 0) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "HAL: ERROR: pin '%s' not found\n",
+                        hal_q_pin(p1, NULL) != 0 ? p1 : p2);
+        halcmd_error("link failed\n");
+        return -ENOENT;
+    }
+    if (a.type != b.type) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "HAL: ERROR: type mismatch '%s' <- '%s'\n", p2, p1);
+        halcmd_error("link failed\n");
         return -EINVAL;
     }
-    const char *p1 = argv[1], *p2 = argv[argc - 1];
-    hal_q_pin_t a, b;
-    if (hal_q_pin(p1, &a) != 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "HAL: ERROR: pin '%s' not found\n", p1);
+    if (a.signal[0] || b.signal[0]) {
+        const hal_q_pin_t *l = a.signal[0] ? &a : &b;
+        rtapi_print_msg(RTAPI_MSG_ERR, "HAL: ERROR: pin '%s' is linked to '%s', cannot link to '%s'\n",
+                        l->name, l->signal, p1);
         halcmd_error("link failed\n");
-        return -ENOENT;
+        return -EINVAL;
     }
-    if (hal_q_pin(p2, &b) != 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "HAL: ERROR: pin '%s' not found\n", p2);
+    int w1 = a.dir == HAL_OUT, w2 = b.dir == HAL_OUT;
+    if ((w1 && (w2 || b.dir == HAL_IO)) || (w2 && a.dir == HAL_IO)) {
+        rtapi_print_msg(RTAPI_MSG_ERR,
+                        "HAL: ERROR: signal '%s' already has output or I/O pin(s)\n", p1);
         halcmd_error("link failed\n");
-        return -ENOENT;
+        return -EINVAL;
     }
-    char *av[] = {"net", (char *)p1, (char *)p1, (char *)p2, NULL};
-    return do_net_cmd(4, av);
+    int rc = hal_signal_new(p1, a.type);
+    if (rc == 0 && (rc = hal_link(p1, p1)) == 0 && (rc = hal_link(p2, p1)) != 0) {
+        hal_unlink(p1);
+    }
+    if (rc != 0) {
+        if (hal_q_sig(p1, NULL) == 0 && hal_q_sig_pins(p1, NULL, 0) == 0)
+            hal_signal_delete(p1);
+        halcmd_error("link failed\n");
+    }
+    return rc;
 }
 
 static int do_unlinkp_cmd(int argc, char **argv)
@@ -1086,11 +1103,8 @@ static int do_debug_cmd(int argc, char **argv)
 
 static int do_print_cmd(int argc, char **argv)
 {
-    fflush(stdout);
-    if (hc.filename != NULL)
-        fprintf(stderr, "%s:%d: %s\n", hc.filename, hc.linenum, argc > 1 ? argv[1] : "");
-    else
-        fprintf(stderr, "%s\n", argc > 1 ? argv[1] : "");
+    /* LinuxCNC 2.9 prints "(null)" when there is no message. */
+    halcmd_error("HALCMD MSG: %s\n", argc > 1 ? argv[1] : "(null)");
     return 0;
 }
 
@@ -1134,9 +1148,9 @@ static const cmd_t commands[] = {
     {"getp", do_getp_cmd, 1, 1, "getp paramname|pinname"},
     {"gets", do_gets_cmd, 1, 1, "gets signame"},
     {"help", do_help_cmd, 0, 1, "help [command]"},
-    {"linkpp", do_linkpp_cmd, 2, 3, "linkpp firstpin [arrow] secondpin"},
-    {"linkps", do_linkps_cmd, 2, 3, "linkps pinname [arrow] signame"},
-    {"linksp", do_linksp_cmd, 2, 3, "linksp signame [arrow] pinname"},
+    {"linkpp", do_linkpp_cmd, 2, 2, "linkpp firstpin secondpin (deprecated: use net)"},
+    {"linkps", do_linkps_cmd, 2, 2, "linkps pinname signame"},
+    {"linksp", do_linksp_cmd, 2, 2, "linksp signame pinname"},
     {"list", do_list_cmd, 1, -1, "list comp|pin|sig|param|funct|thread [-tTYPE] [pattern...]"},
     {"loadrt", do_loadrt_cmd, 1, -1, "loadrt modname [modarg...]"},
     {"loadusr", do_loadusr_cmd, 1, -1, "loadusr [-W|-Wn name|-w|-i|-n name] prog [args...]"},
