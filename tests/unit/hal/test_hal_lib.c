@@ -8,6 +8,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "check.h"
@@ -426,6 +427,77 @@ static void test_exit_cleans(void)
     CHECK_EQ_INT(hal_hdr->active_params, 0);
 }
 
+/* Several processes create, link, unlink and delete at once: afterwards the
+ * lists, counters and indexes must agree (one lock, no corruption). */
+static void test_concurrent_processes(void)
+{
+    enum { NPROC = 4, ITER = 300 };
+    pid_t pids[NPROC];
+    for (int p = 0; p < NPROC; p++) {
+        pids[p] = fork();
+        if (pids[p] == 0) {
+            char cname[32];
+            snprintf(cname, sizeof(cname), "child%d", p);
+            int id = hal_init(cname);
+            hal_float_t **pin = hal_malloc(sizeof(*pin));
+            char pname[48], sname[48];
+            snprintf(pname, sizeof(pname), "child%d.in", p);
+            if (id < 0 || pin == NULL || hal_pin_float_new(pname, HAL_IN, pin, id) != 0)
+                _exit(2);
+            hal_ready(id);
+            for (int i = 0; i < ITER; i++) {
+                snprintf(sname, sizeof(sname), "c%d-s%d", p, i % 7);
+                if (hal_signal_new(sname, HAL_FLOAT) != 0)
+                    _exit(3);
+                if (hal_link(pname, sname) != 0)
+                    _exit(4);
+                char err[128];
+                if (hal_q_sets(sname, "1.5", err, sizeof(err)) != 0 || **pin != 1.5)
+                    _exit(5);
+                if (hal_unlink(pname) != 0 || hal_signal_delete(sname) != 0)
+                    _exit(6);
+            }
+            hal_exit(id);
+            _exit(0);
+        }
+    }
+    int ok = 1;
+    for (int p = 0; p < NPROC; p++) {
+        int st;
+        waitpid(pids[p], &st, 0);
+        if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) {
+            fprintf(stderr, "child %d: status %d\n", p, st);
+            ok = 0;
+        }
+    }
+    CHECK(ok);
+    int nsig = 0;
+    for (hal_off_t off = hal_hdr->sig_list; off; off = ((hal_sig_t *)SHMPTR(off))->next)
+        nsig++;
+    CHECK_EQ_INT(nsig, hal_hdr->active_sigs);
+    for (int p = 0; p < NPROC; p++) {
+        char cname[32];
+        snprintf(cname, sizeof(cname), "child%d", p);
+        CHECK(!hal_q_component_exists(cname));
+    }
+    CHECK(hal_q_sig("c0-s1", NULL) == -ENOENT);
+}
+
+/* A process that dies holding the HAL mutex does not block the others
+ * (robust mutex). */
+static void test_dead_lock_holder(void)
+{
+    pid_t pid = fork();
+    if (pid == 0) {
+        hal_priv_lock();
+        _exit(0);
+    }
+    int st;
+    waitpid(pid, &st, 0);
+    CHECK_EQ_INT(hal_signal_new("after-crash", HAL_BIT), 0);
+    CHECK_EQ_INT(hal_signal_delete("after-crash"), 0);
+}
+
 int main(void)
 {
     char inst[64];
@@ -444,6 +516,8 @@ int main(void)
     RUN(test_memory);
     RUN(test_shmem_blocks);
     RUN(test_exit_cleans);
+    RUN(test_concurrent_processes);
+    RUN(test_dead_lock_holder);
     hal_priv_session_destroy();
     return check_summary();
 }
