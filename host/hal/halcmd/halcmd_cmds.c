@@ -69,13 +69,20 @@ static int is_arrow(const char *s)
            strcmp(s, "==>") == 0 || strcmp(s, "<==") == 0;
 }
 
+/* Messages of realtime modules, as rtapi_app captured them: NUL-separated
+ * records tagged 'E' (stderr) or 'O' (stdout). */
 static void print_rt_messages(const char *msgs)
 {
-    if (msgs == NULL || *msgs == '\0')
+    if (msgs == NULL)
         return;
-    fflush(stdout);
-    fputs(msgs, stderr);
-    fflush(stderr);
+    for (const char *p = msgs; *p != '\0'; p += strlen(p) + 1) {
+        if (hc.very_quiet)
+            continue;
+        FILE *f = p[0] == 'O' ? stdout : stderr;
+        fflush(f == stdout ? stderr : stdout);
+        fputs(p + 1, f);
+        fflush(f);
+    }
 }
 
 /* ---- loadrt / unloadrt ----------------------------------------------------- */

@@ -67,6 +67,10 @@ if [ -n "$inifile" ]; then
     args+=(-i "$inifile")
 fi
 
+# rtapi_app (started by halcmd on demand) shares this terminal; halrun
+# waits for it at the end.
+export HAL_RTAPI_STDIO=inherit
+
 state=$("$HALCMD" --session-state 2>/dev/null)
 case "$state" in
 running)

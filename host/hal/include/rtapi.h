@@ -56,11 +56,15 @@ typedef enum {
     RTAPI_MSG_ALL
 } msg_level_t;
 
-/* Print when level <= the current message level (default RTAPI_MSG_ERR,
- * settable with rtapi_set_msg_level(), the RTAPI_MSG_LEVEL environment
- * variable, or halcmd's debug command).  Output goes where LinuxCNC's
- * uspace rtapi_app sends it: the terminal of the session (stderr of
- * rtapi_app), and is also appended to the session log. */
+/* Print when level <= the current message level, settable with
+ * rtapi_set_msg_level(), the RTAPI_MSG_LEVEL environment variable, or
+ * halcmd's debug command (for the whole session).  Default: RTAPI_MSG_INFO
+ * inside rtapi_app (LinuxCNC's uspace rtapi_app shows its modules' INFO
+ * messages), RTAPI_MSG_ERR in userspace processes.  Output goes where
+ * LinuxCNC's uspace rtapi_app sends it: errors and warnings to the
+ * session's stderr, info and debug to its stdout; messages printed while
+ * halcmd waits for a request (loadrt, unloadrt) appear on that halcmd's
+ * terminal in order with its own lines. */
 void rtapi_print_msg(msg_level_t level, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 void rtapi_vprint_msg(msg_level_t level, const char *fmt, va_list ap);

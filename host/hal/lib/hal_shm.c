@@ -330,6 +330,10 @@ int hal_priv_session_destroy(void)
     int rc = 0;
     if (shm_unlink(name) != 0 && errno != ENOENT)
         rc = -errno;
+    /* rtapi_app's log when it ran without a terminal (rtapi_client.c) */
+    char logname[256];
+    snprintf(logname, sizeof(logname), "/tmp%s.log", name);
+    unlink(logname);
     /* Other shared memory of the session: rtapi_shmem blocks (NAME-shm-KEY)
      * and the components' stream channels (NAME.sampler.N, ...). */
     char prefix[128], prefix2[128];

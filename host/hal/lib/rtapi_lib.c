@@ -29,7 +29,10 @@ static int env_msg_level(void)
 {
     if (local_msg_level < 0) {
         const char *s = getenv("RTAPI_MSG_LEVEL");
-        int lvl = RTAPI_MSG_ERR;
+        /* LinuxCNC's uspace rtapi_app shows its modules' INFO messages
+         * ("hm2: loading Mesa HostMot2 driver version ..."); userspace
+         * processes show errors only. */
+        int lvl = hal_priv_is_realtime_host() ? RTAPI_MSG_INFO : RTAPI_MSG_ERR;
         if (s != NULL && *s) {
             char *end;
             long v = strtol(s, &end, 10);

@@ -42,12 +42,17 @@ static char *msg_buf;
 static size_t msg_len, msg_cap;
 static int capturing;
 
+/* Captured messages are sent as lines "E<text>" (for stderr: errors and
+ * warnings) or "O<text>" (for stdout: info and debug, where LinuxCNC's
+ * rtapi_app prints them), each ended by a NUL. */
 static void msg_hook(int level, const char *text)
 {
-    (void)level;
     pthread_mutex_lock(&msg_lock);
     if (capturing) {
-        size_t n = strlen(text);
+        char tagged[1100];
+        snprintf(tagged, sizeof(tagged), "%c%s", level <= RTAPI_MSG_WARN ? 'E' : 'O', text);
+        text = tagged;
+        size_t n = strlen(text) + 1; /* keep the NUL as separator */
         if (msg_len + n + 1 > msg_cap) {
             size_t cap = (msg_cap ? msg_cap * 2 : 1024) + n;
             char *nb = realloc(msg_buf, cap);
@@ -57,12 +62,13 @@ static void msg_hook(int level, const char *text)
             }
         }
         if (msg_len + n + 1 <= msg_cap) {
-            memcpy(msg_buf + msg_len, text, n + 1);
+            memcpy(msg_buf + msg_len, text, n);
             msg_len += n;
         }
     } else {
-        fputs(text, stderr);
-        fflush(stderr);
+        FILE *f = level <= RTAPI_MSG_WARN ? stderr : stdout;
+        fputs(text, f);
+        fflush(f);
     }
     pthread_mutex_unlock(&msg_lock);
 }

@@ -85,9 +85,24 @@ static int start_rtapi_app(void)
         int devnull = open("/dev/null", O_RDWR);
         if (devnull >= 0) {
             dup2(devnull, 0);
-            dup2(devnull, 1);
             if (devnull > 2)
                 close(devnull);
+        }
+        /* Under halrun (which waits for rtapi_app at its end) the daemon
+         * shares the session's terminal, as LinuxCNC's does.  A halcmd run
+         * on its own may have pipes as stdout/stderr that its caller reads
+         * to EOF; the daemon must not hold them open, so its messages go
+         * to the session log instead. */
+        const char *stdio = getenv("HAL_RTAPI_STDIO");
+        if (stdio == NULL || strcmp(stdio, "inherit") != 0) {
+            char logname[256];
+            snprintf(logname, sizeof(logname), "/tmp%s.log", hal_priv_shm_name());
+            int log = open(logname, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
+            if (log >= 0) {
+                dup2(log, 1);
+                dup2(log, 2);
+                close(log);
+            }
         }
         execl(path, "rtapi_app", (char *)NULL);
         fprintf(stderr, "HAL: ERROR: cannot run %s: %s\n", path, strerror(errno));
@@ -206,12 +221,13 @@ static int request_once(int start, int argc, const char *const *argv, int *statu
     if (rc == 0)
         rc = read_all(fd, &mlen, 4);
     if (rc == 0 && mlen > 0) {
-        char *m = malloc(mlen + 1);
+        char *m = malloc(mlen + 2);
         if (m == NULL) {
             rc = -ENOMEM;
         } else {
             rc = read_all(fd, m, mlen);
-            m[mlen] = '\0';
+            m[mlen] = '\0'; /* NUL-separated records end with an empty one */
+            m[mlen + 1] = '\0';
             if (rc == 0 && messages)
                 *messages = m;
             else

@@ -6,7 +6,9 @@
  * request:  u32 length, then `length` bytes: argv strings, each NUL-ended
  *           ("load", "and2", "count=2") ...
  * reply:    i32 status (0 or -errno), u32 length, then the messages that
- *           modules printed while the request ran (to be shown by halcmd).
+ *           modules printed while the request ran (to be shown by halcmd):
+ *           records "E<text>" (for stderr) or "O<text>" (for stdout), each
+ *           ended by a NUL.  `list` replies with module names, one a line.
  *
  * Requests: load NAME [ARGS...] | unload NAME | list | simrun NS | ping |
  *           exit (unload everything and quit).

@@ -3,7 +3,7 @@
  * hm_testmod - realtime component for HAL core tests (not a product
  * component; lives in lib/rtlib-test).
  *
- *   loadrt hm_testmod [count=N] [fail=1] [label=TEXT] [values=a,b,c]
+ *   loadrt hm_testmod [count=N] [fail=1] [label=TEXT] [values=a,b,c] [verbose=1]
  *
  * Instance i has pins hm-testmod.i.{bit,float,s32,u32,s64,u64}-{in,out,io},
  * parameters hm-testmod.i.{bit,float,s32,u32,s64,u64}-{ro,rw} and a function
@@ -28,6 +28,8 @@ static char *label = "none";
 RTAPI_MP_STRING(label, "a string parameter, echoed in rtapi messages");
 static long values[4] = {0, 0, 0, 0};
 RTAPI_MP_ARRAY_LONG(values, 4, "up to 4 longs, echoed in rtapi messages");
+static int verbose = 0;
+RTAPI_MP_INT(verbose, "1: print an INFO message when loaded");
 
 typedef struct {
     hal_bit_t *bit_in, *bit_out, *bit_io;
@@ -81,7 +83,9 @@ int rtapi_app_main(void)
         rtapi_print_msg(RTAPI_MSG_ERR, "HM_TESTMOD: ERROR: count=%d out of range 1..16\n", count);
         return -EINVAL;
     }
-    rtapi_print_msg(RTAPI_MSG_INFO, "HM_TESTMOD: label=%s values=%ld,%ld,%ld,%ld\n", label,
+    if (verbose)
+        rtapi_print_msg(RTAPI_MSG_INFO, "HM_TESTMOD: loading %d instance(s)\n", count);
+    rtapi_print_msg(RTAPI_MSG_DBG, "HM_TESTMOD: label=%s values=%ld,%ld,%ld,%ld\n", label,
                     values[0], values[1], values[2], values[3]);
     comp_id = hal_init("hm_testmod");
     if (comp_id < 0)
