@@ -48,6 +48,10 @@ DB25 = [1, 14, 2, 15, 3, 16, 4, 17, 5, 6, 7, 8, 9, 10, 11, 12, 13]
 needs_shared = pytest.mark.skipif(not PINMAPS.is_dir(), reason="shared/spec/pinmaps not present")
 
 
+def docs_top(board: str, name: str) -> str:
+    return f"hm2_{board}_{name}".lower()
+
+
 def fw_path(board: str, name: str) -> Path:
     return HM2 / "firmware" / board / f"{name}.toml"
 
@@ -67,6 +71,7 @@ def generated(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, str],
             "hex": [int(x, 16) for x in (d / f"{name}.idrom.hex").read_text().split()],
             "pin": (d / f"{name}.PIN").read_text(),
             "inc": next(d.glob("*_inc.v")).read_text(),
+            "top": (d / f"{docs_top(board, name)}.v").read_text(),
         }
     return docs
 
@@ -179,6 +184,15 @@ def test_outputs_agree(generated, board, name, stem, omitted) -> None:
         # outputs of implemented modules are routed, GPIO / omitted modules are not
         routed = p["direction"] == "out" and p["sec_tag"] not in omitted
         assert (p["alt_src"] > 0) == routed, p
+    # the top's port list is what the JSON tells the virtual board
+    ports = re.findall(r"^\s+(input|output)\s+wire\s+(?:\[(\d+):0\])?\s*(\w+)", g["top"], re.M)
+    got = [{"name": n, "dir": "in" if d == "input" else "out", "width": int(w) + 1 if w else 1}
+           for d, w, n in ports]
+    assert got == [{k: p[k] for k in ("name", "dir", "width")} for p in doc["verilog"]["ports"]]
+    names = [p["name"] for p in got]
+    assert ("lb_addr" in names) == (b is not BOARDS["7i43"]) and ("epp_nwait" in names) == (
+        b is BOARDS["7i43"])
+    assert got[-4:][0]["width"] == len(doc["pins"])
     # .PIN: one line per pin with connector pin, I/O, module, unit, signal
     lines = {int(x.split()[1]): x.split() for x in g["pin"].splitlines()
              if re.match(r"^\s+\d+\s+\d+\s+IOPort", x)}

@@ -87,40 +87,54 @@ _PARAMS = ("IOPORTS", "PORTWIDTH", "NUM_LEDS", "NUM_STEPGEN", "SG_TABLE_WIDTH", 
            "IDROM", "ALT_SRC", "ENC_SRC")
 
 
+LOCALBUS_PORTS = [
+    ("lb_addr", "in", 16, "byte address of the hm2 space"),
+    ("lb_wdata", "in", 32, "write data"),
+    ("lb_wr", "in", 1, "one clock per 32-bit write"),
+    ("lb_rd", "in", 1, "one clock per 32-bit read"),
+    ("lb_rdata", "out", 32, "read data, valid while lb_rvalid"),
+    ("lb_rvalid", "out", 1, "read data valid (2 clocks after lb_rd)"),
+]
+EPP_PORTS = [
+    ("epp_d_i", "in", 8, "EPP data bus level"),
+    ("epp_d_o", "out", 8, "EPP data driven by the firmware"),
+    ("epp_d_oe", "out", 1, "1 = firmware drives epp_d_o"),
+    ("epp_nwrite", "in", 1, "EPP nWrite"),
+    ("epp_ndatastr", "in", 1, "EPP nDataStrobe"),
+    ("epp_naddrstr", "in", 1, "EPP nAddrStrobe"),
+    ("epp_nwait", "out", 1, "EPP nWait, 1 = acknowledge"),
+    ("reconfig", "out", 1, "one-clock pulse: reload the FPGA"),
+]
+
+
+def top_ports(fw: Firmware) -> list[tuple[str, str, int, str]]:
+    """(name, direction, width, meaning) of the generated top's ports."""
+    iow = fw.board.io_width
+    return [
+        ("clk_low", "in", 1, "ClockLow"),
+        ("clk_high", "in", 1, "ClockHigh"),
+        ("rst", "in", 1, "synchronous to clk_low, active high"),
+        *(LOCALBUS_PORTS if fw.board.bus == "localbus" else EPP_PORTS),
+        ("io_in", "in", iow, "level on each I/O pin"),
+        ("io_out", "out", iow, "level driven on each I/O pin"),
+        ("io_oe", "out", iow, "1 = the firmware drives the pin"),
+        ("leds", "out", max(fw.leds, 1), "1 = LED lit"),
+    ]
+
+
 def verilog_top(fw: Firmware) -> str:
     b = fw.board
     t = fw.top_module
     inc = file_names(fw)["verilog_include"]
-    iow = b.io_width
-    ledw = max(fw.leds, 1)
-    if b.bus == "localbus":
-        bus_ports = [
-            "    input  wire [15:0] lb_addr,",
-            "    input  wire [31:0] lb_wdata,",
-            "    input  wire        lb_wr,",
-            "    input  wire        lb_rd,",
-            "    output wire [31:0] lb_rdata,",
-            "    output wire        lb_rvalid,",
-        ]
-        bus_conn = ["        .lb_addr(lb_addr), .lb_wdata(lb_wdata), .lb_wr(lb_wr), .lb_rd(lb_rd),",
-                    "        .lb_rdata(lb_rdata), .lb_rvalid(lb_rvalid),"]
-        wrapper = "hm2_top_localbus"
-    else:
-        bus_ports = [
-            "    input  wire [7:0]  epp_d_i,",
-            "    output wire [7:0]  epp_d_o,",
-            "    output wire        epp_d_oe,",
-            "    input  wire        epp_nwrite,",
-            "    input  wire        epp_ndatastr,",
-            "    input  wire        epp_naddrstr,",
-            "    output wire        epp_nwait,",
-            "    output wire        reconfig,",
-        ]
-        bus_conn = ["        .epp_d_i(epp_d_i), .epp_d_o(epp_d_o), .epp_d_oe(epp_d_oe),",
-                    "        .epp_nwrite(epp_nwrite), .epp_ndatastr(epp_ndatastr),",
-                    "        .epp_naddrstr(epp_naddrstr), .epp_nwait(epp_nwait),",
-                    "        .reconfig(reconfig),"]
-        wrapper = "hm2_top_epp"
+    wrapper = "hm2_top_localbus" if b.bus == "localbus" else "hm2_top_epp"
+    ports = top_ports(fw)
+    decl = []
+    for i, (name, d, w, what) in enumerate(ports):
+        kind = "input  wire" if d == "in" else "output wire"
+        rng = f"[{w - 1}:0]" if w > 1 else ""
+        sep = "," if i < len(ports) - 1 else ""
+        decl.append(f"    {kind} {rng:<8} {name + sep:<14} // {what}")
+    conn = ",\n".join(f"        .{name}({name})" for name, _, _, _ in ports)
     params = ",\n".join(f"        .{p}(HM2_{p})" for p in _PARAMS)
     return "\n".join([
         "// SPDX-License-Identifier: GPL-2.0-or-later",
@@ -129,23 +143,14 @@ def verilog_top(fw: Firmware) -> str:
         "`default_nettype none",
         "",
         f"module {t} (",
-        "    input  wire        clk_low,   // ClockLow",
-        "    input  wire        clk_high,  // ClockHigh",
-        "    input  wire        rst,       // synchronous to clk_low, active high",
-        *bus_ports,
-        f"    input  wire [{iow - 1}:0] io_in,",
-        f"    output wire [{iow - 1}:0] io_out,",
-        f"    output wire [{iow - 1}:0] io_oe,",
-        f"    output wire [{ledw - 1}:0] leds       // 1 = LED lit",
+        *decl,
         ");",
         f'`include "{inc}"',
         "",
         f"    {wrapper} #(",
         params,
         "    ) u_top (",
-        "        .clk_low(clk_low), .clk_high(clk_high), .rst(rst),",
-        *bus_conn,
-        "        .io_in(io_in), .io_out(io_out), .io_oe(io_oe), .leds(leds)",
+        conn,
         "    );",
         "endmodule",
         "",
@@ -304,6 +309,14 @@ def json_doc(fw: Firmware) -> dict[str, Any]:
             "words": words,
         },
         "files": file_names(fw),
+        "verilog": {
+            "top_module": fw.top_module,
+            "wrapper": "hm2_top_localbus" if b.bus == "localbus" else "hm2_top_epp",
+            "library_dirs": ["hdl/hostmot2", "hdl/common"],
+            "ports": [{"name": n, "dir": d, "width": w, "meaning": m}
+                      for n, d, w, m in top_ports(fw)],
+            "localbus_read_latency": 2 if b.bus == "localbus" else None,
+        },
     }
 
 
