@@ -29,6 +29,8 @@ static void vprefix(FILE *out, const char *fmt, va_list ap)
     fflush(stdout);
     if (hc.filename != NULL)
         fprintf(out, "%s:%d: ", hc.filename, hc.linenum);
+    else
+        fprintf(out, "<commandline>:0: ");
     vfprintf(out, fmt, ap);
     fflush(out);
 }
@@ -1328,10 +1330,10 @@ int halcmd_run_file(const char *path, FILE *f)
         }
         if (!got)
             break;
-        int endline = hc.linenum;
-        hc.linenum = startline;
+        /* Errors name the last physical line of a continued line, as
+         * LinuxCNC does. */
+        (void)startline;
         int rc = halcmd_run_line(logical);
-        hc.linenum = endline;
         if (rc != 0) {
             result = rc;
             if (!hc.keep_going)

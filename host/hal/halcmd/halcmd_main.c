@@ -125,7 +125,8 @@ static char **halcmd_completion(const char *text, int start, int end)
 static int interactive(void)
 {
     int result = 0;
-    hc.filename = NULL;
+    hc.filename = "<stdin>";
+    hc.linenum = 0;
 #ifdef HAVE_READLINE
     rl_readline_name = "halcmd";
     rl_attempted_completion_function = halcmd_completion;
@@ -135,6 +136,7 @@ static int interactive(void)
             break;
         if (*line)
             add_history(line);
+        hc.linenum++;
         int rc = halcmd_run_line(line);
         free(line);
         if (rc)
@@ -148,6 +150,7 @@ static int interactive(void)
         fflush(stdout);
         if (getline(&line, &cap, stdin) < 0)
             break;
+        hc.linenum++;
         int rc = halcmd_run_line(line);
         if (rc)
             result = rc;
