@@ -620,6 +620,7 @@ static int do_load(int argc, char **argv)
             if (!found)
                 halpr_comp_delete(after[i]);
         }
+        __atomic_add_fetch(&hal_hdr->sim_abort, 1, __ATOMIC_RELEASE);
         quiesce();
         dlclose(h);
         free_strings(m);
@@ -686,8 +687,9 @@ static int unload_module(module_t *m)
     /* Functions leave the threads before the module's exit code runs,
      * and the code stays mapped until no period is still inside it. */
     remove_functs_of(m);
-    quiesce();
+    /* A function waiting in rtapi_sim_yield() for a peer gives up now. */
     __atomic_add_fetch(&hal_hdr->sim_abort, 1, __ATOMIC_RELEASE);
+    quiesce();
     void (*app_exit)(void) = (void (*)(void))dlsym(m->handle, "rtapi_app_exit");
     if (app_exit != NULL)
         app_exit();
