@@ -62,29 +62,56 @@ module hm2_encoder (
 
     wire [3:0] fmax = ctrl_q[C_QFILTER] ? 4'd15 : 4'd3;
 
+    // After reset the filter is primed from the pins instead of integrating
+    // up from 0: otherwise idle pulled-up inputs (A=B=1) would pass the
+    // filter in the same sample and look like a simultaneous A/B change,
+    // setting the sticky QuadError at power-up.  Priming waits until the
+    // synchronizer holds real pin levels (2 clocks), and decoding starts one
+    // clock after priming so prev_q/cond_prev_q already hold primed values.
+    reg  [1:0] warm_q;        // clocks since reset, saturating at 3
+    reg        primed_q;      // filter loaded from the pins
+    reg        live_q;        // decode enabled (primed one clock ago)
+    wire       warm = (warm_q == 2'd3);
+
     integer j;
     always @(posedge clk) begin
         if (rst) begin
-            fcnt_q <= 12'd0;
-            filt_q <= 3'b000;
-        end else if (sample) begin
-            for (j = 0; j < 3; j = j + 1) begin
-                if (pins_s[j]) begin
-                    if ({1'b0, fcnt_q[4*j +: 4]} + 5'd1 >= {1'b0, fmax}) begin
-                        fcnt_q[4*j +: 4] <= fmax;
-                        filt_q[j] <= 1'b1;
+            fcnt_q   <= 12'd0;
+            filt_q   <= 3'b000;
+            warm_q   <= 2'd0;
+            primed_q <= 1'b0;
+            live_q   <= 1'b0;
+        end else if (!primed_q) begin
+            if (!warm)
+                warm_q <= warm_q + 2'd1;
+            else begin
+                for (j = 0; j < 3; j = j + 1) begin
+                    filt_q[j]        <= pins_s[j];
+                    fcnt_q[4*j +: 4] <= pins_s[j] ? fmax : 4'd0;
+                end
+                primed_q <= 1'b1;
+            end
+        end else begin
+            live_q <= 1'b1;
+            if (sample) begin
+                for (j = 0; j < 3; j = j + 1) begin
+                    if (pins_s[j]) begin
+                        if ({1'b0, fcnt_q[4*j +: 4]} + 5'd1 >= {1'b0, fmax}) begin
+                            fcnt_q[4*j +: 4] <= fmax;
+                            filt_q[j] <= 1'b1;
+                        end else begin
+                            fcnt_q[4*j +: 4] <= fcnt_q[4*j +: 4] + 4'd1;
+                        end
                     end else begin
-                        fcnt_q[4*j +: 4] <= fcnt_q[4*j +: 4] + 4'd1;
-                    end
-                end else begin
-                    if (fcnt_q[4*j +: 4] <= 4'd1) begin
-                        fcnt_q[4*j +: 4] <= 4'd0;
-                        filt_q[j] <= 1'b0;
-                    end else if (fcnt_q[4*j +: 4] > fmax) begin
-                        // filter length shortened while above the new stop
-                        fcnt_q[4*j +: 4] <= fmax - 4'd1;
-                    end else begin
-                        fcnt_q[4*j +: 4] <= fcnt_q[4*j +: 4] - 4'd1;
+                        if (fcnt_q[4*j +: 4] <= 4'd1) begin
+                            fcnt_q[4*j +: 4] <= 4'd0;
+                            filt_q[j] <= 1'b0;
+                        end else if (fcnt_q[4*j +: 4] > fmax) begin
+                            // filter length shortened while above the new stop
+                            fcnt_q[4*j +: 4] <= fmax - 4'd1;
+                        end else begin
+                            fcnt_q[4*j +: 4] <= fcnt_q[4*j +: 4] - 4'd1;
+                        end
                     end
                 end
             end
@@ -103,7 +130,9 @@ module hm2_encoder (
         up = 1'b0;
         down = 1'b0;
         qerr_set = 1'b0;
-        if (ctrl_q[C_UPDOWN]) begin
+        if (!live_q) begin
+            // not decoding until the filter is primed (see above)
+        end else if (ctrl_q[C_UPDOWN]) begin
             // up/down counter: A rising edge counts, B gives the direction
             if (a && !prev_q[0]) begin
                 up = b;
@@ -124,7 +153,7 @@ module hm2_encoder (
     wire ab_ok = !ctrl_q[C_ABGATE] ||
                  ((a == ctrl_q[C_ABMASKPOL]) && (b == ctrl_q[C_ABMASKPOL]));
     wire cond = (idx == ctrl_q[C_IDXPOL]) && mask_ok && ab_ok;
-    wire index_event = cond && !cond_prev_q;
+    wire index_event = live_q && cond && !cond_prev_q;
     wire do_clear = index_event && ctrl_q[C_CLRIDX];
     wire do_latch = index_event && ctrl_q[C_LATCHIDX];
 

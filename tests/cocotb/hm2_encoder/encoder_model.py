@@ -36,6 +36,11 @@ class EncoderModel:
     latch: int = 0
     ctrl: int = 0  # CCR bits 14..3 in place
     qerr: int = 0
+    # power-up priming (see hm2_encoder.v): clocks since reset, filter loaded
+    # from the pins, decoding enabled
+    warm: int = 0
+    primed: bool = False
+    live: bool = False
     # bookkeeping for tests
     qerr_events: int = 0
     index_events: int = 0
@@ -44,10 +49,13 @@ class EncoderModel:
               we_count: bool, ccr_write: int | None) -> None:
         ctrl = self.ctrl
         fmax = 15 if bit(ctrl, CCR_FILTER) else 3
+        was_primed = self.primed
         a, b, idx = self.filt
         pa, pb = self.prev
         up = down = qerr_set = False
-        if bit(ctrl, CCR_UPDOWN):
+        if not self.live:
+            pass  # no decoding until the filter is primed from the pins
+        elif bit(ctrl, CCR_UPDOWN):
             if a and not pa:
                 up, down = bool(b), not b
         else:
@@ -64,11 +72,20 @@ class EncoderModel:
         pol = bit(ctrl, CCR_ABMASKPOL)
         ab_ok = not bit(ctrl, CCR_ABGATE) or (a == pol and b == pol)
         cond = int(idx == bit(ctrl, CCR_IDXPOL) and mask_ok and ab_ok)
-        event = bool(cond and not self.cond_prev)
+        event = bool(self.live and cond and not self.cond_prev)
 
         # filters (use the synchronized levels from before this edge)
         new_fcnt, new_filt = list(self.fcnt), list(self.filt)
-        if sample:
+        if not self.primed:
+            # wait until the synchronizer holds pin levels, then load the
+            # filter from them instead of integrating up from 0
+            if self.warm < 3:
+                self.warm += 1
+            else:
+                new_filt = [self.s2[j] for j in range(3)]
+                new_fcnt = [fmax if self.s2[j] else 0 for j in range(3)]
+                self.primed = True
+        elif sample:
             for j in range(3):
                 c = self.fcnt[j]
                 if self.s2[j]:
@@ -107,6 +124,8 @@ class EncoderModel:
         if event:
             self.index_events += 1
 
+        if was_primed:
+            self.live = True  # decoding starts the clock after priming
         self.prev = [a, b]
         self.cond_prev = cond
         self.fcnt, self.filt = new_fcnt, new_filt

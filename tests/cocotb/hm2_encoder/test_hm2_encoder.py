@@ -54,11 +54,13 @@ class Harness:
         self.t_ref = 0.0
         self.logs: list[VectorLog] = []
         self.src: list[QuadSource] = []
+        self.vecs: list[_Vec] = []
 
-    async def start(self) -> None:
+    async def start(self, idle: int = 0) -> None:
+        """Reset with every input pin at ``idle`` (1 = pulled-up, unconnected)."""
         d = self.dut
         for sig in (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask):
-            sig.value = 0
+            sig.value = ((1 << self.num) - 1) if idle else 0
         cocotb.start_soon(Clock(d.clk, PERIOD, unit="ns").start())
         d.rst.value = 1
         self.bus.idle()
@@ -68,8 +70,10 @@ class Harness:
         await RisingEdge(d.clk)
         self.t_ref = get_sim_time("ns")
         self.logs = [VectorLog(s).start() for s in (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask)]
-        vecs = [_Vec(x) for x in (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask)]
-        self.src = [_BitSource(vecs, i) for i in range(self.num)]
+        init = ((1 << self.num) - 1) if idle else 0
+        self.vecs = [_Vec(x, init) for x in (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask)]
+        # a QuadSource drives its pins to state 00 when made: none for idle-high
+        self.src = [] if idle else [_BitSource(self.vecs, i) for i in range(self.num)]
         # pin changes happen off the clock edges: start a little after one
         await Timer(7.321, unit="ns")
 
@@ -128,10 +132,10 @@ class _Vec:
     change different bits in the same time step (a read of the handle would
     not yet show a write made earlier in that step)."""
 
-    def __init__(self, handle) -> None:
+    def __init__(self, handle, init: int = 0) -> None:
         self.handle = handle
-        self.shadow = 0
-        handle.value = 0
+        self.shadow = init
+        handle.value = init
 
     def set(self, i: int, v: int) -> None:
         self.shadow = (self.shadow & ~(1 << i)) | ((v & 1) << i)
@@ -203,6 +207,28 @@ async def bus_rules(dut) -> None:
     assert (t1 - t0) & 0xFFFF == 2  # two clocks per read
     held = await h.bus.check_hold()
     assert held == t1
+    h.replay(qfilter_reset(dut))
+
+
+@cocotb.test()
+async def power_up_with_idle_high_inputs(dut) -> None:
+    """Pulled-up inputs (A=B=Index=1) at power-up are not a quadrature
+    error and not a count: the filter is primed from the pins."""
+    h = Harness(dut)
+    await h.start(idle=1)
+    await h.wait(40)
+    for inst in range(h.num):
+        ccr = await h.read(R_CCR, inst)
+        assert ccr & 0x8000 == 0, f"inst {inst}: QuadError set at power-up (CCR {ccr:#010x})"
+        assert ccr & 0x7 == 0x7, f"inst {inst}: filtered A/B/Index not high (CCR {ccr:#010x})"
+        assert await h.read(R_COUNT, inst) & 0xFFFF == 0
+    # and it still counts afterwards: one forward quadrature cycle from 11
+    for a, b in ((0, 1), (0, 0), (1, 0), (1, 1)):
+        h.vecs[0].set(0, a)
+        h.vecs[1].set(0, b)
+        await h.wait(40)
+    assert await h.read(R_COUNT, 0) & 0xFFFF == 4
+    assert await h.read(R_CCR, 0) & 0x8000 == 0
     h.replay(qfilter_reset(dut))
 
 
