@@ -1,0 +1,166 @@
+/* SPDX-License-Identifier: GPL-2.0-or-later */
+/*
+ * hm2_7i43 - HAL board driver for the Mesa 7i43 (EPP) with HostMot2
+ * firmware (docs/hm2_7i43.md, spec/hostmot2.md §17.2).  loadrt arguments
+ * as LinuxCNC's (ioaddr, ioaddr_hi, epp_wide, config, debug_epp), plus
+ * port= to choose another epp_port backend per board.
+ */
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hal.h"
+#include "hm2/hostmot2.h"
+#include "hm2_7i43_llio.h"
+#include "rtapi.h"
+
+MODULE_LICENSE("GPL");
+MODULE_AUTHOR("hm2stack");
+MODULE_DESCRIPTION("HostMot2 Mesa 7i43 low-level driver (EPP)");
+
+#define NB HM2_7I43_MAX_BOARDS
+
+static int ioaddr[NB] = {0, -1, -1, -1};
+RTAPI_MP_ARRAY_INT(ioaddr, NB, "base address of the parallel port(s) (default: 0 = parport0)");
+static int ioaddr_hi[NB] = {0, 0, 0, 0};
+RTAPI_MP_ARRAY_INT(ioaddr_hi, NB,
+                   "secondary address of the parallel port(s) (0 = ioaddr+0x400, -1 = none)");
+static int epp_wide[NB] = {1, 1, 1, 1};
+RTAPI_MP_ARRAY_INT(epp_wide, NB, "set to 0 to disable wide EPP accesses");
+static char *config[NB];
+RTAPI_MP_ARRAY_STRING(config, NB, "config string for the AnyIO boards (see hostmot2(9) manpage)");
+static int debug_epp[NB] = {0, 0, 0, 0};
+RTAPI_MP_ARRAY_INT(debug_epp, NB, "Developer/debug use only!  Enable debug logging of most EPP "
+                                  "transfers.");
+static char *port[NB];
+RTAPI_MP_ARRAY_STRING(port, NB, "epp_port per board: raw:ADDR, ppdev:DEV, gpiod:CHIP:LINES, "
+                                "sim:SOCKET (overrides ioaddr)");
+
+struct h7_slot {
+    struct hm2_7i43 board;
+    epp_port_t port;
+    int port_open;
+    int registered;
+};
+static struct h7_slot *slots;
+static int comp_id = -1;
+
+static void h7_log(int level, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    if (level == H7_PRINT) {
+        char buf[512];
+        vsnprintf(buf, sizeof(buf), fmt, ap);
+        rtapi_print("%s", buf);
+    } else {
+        rtapi_vprint_msg(level == H7_ERR    ? RTAPI_MSG_ERR
+                         : level == H7_INFO ? RTAPI_MSG_INFO
+                                            : RTAPI_MSG_DBG,
+                         fmt, ap);
+    }
+    va_end(ap);
+}
+
+static long long h7_now(void)
+{
+    return rtapi_get_time();
+}
+
+static void cleanup(void)
+{
+    if (!slots)
+        return;
+    for (int i = 0; i < NB; i++) {
+        if (slots[i].registered)
+            hm2_unregister(&slots[i].board.llio);
+        if (slots[i].port_open)
+            epp_port_close(&slots[i].port);
+    }
+    free(slots);
+    slots = NULL;
+}
+
+static int board_wanted(int i)
+{
+    return (port[i] && port[i][0]) || ioaddr[i] >= 0;
+}
+
+static int setup_one(int i)
+{
+    struct h7_slot *s = &slots[i];
+    char err[256];
+    int r = epp_port_open(&s->port, port[i], ioaddr[i], ioaddr_hi[i], epp_wide[i], err,
+                          sizeof(err));
+    if (r) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_7i43: board %d: cannot open the parallel port: %s\n",
+                        i, err);
+        return r;
+    }
+    s->port_open = 1;
+    r = hm2_7i43_setup_board(&s->board, &s->port, i, epp_wide[i], debug_epp[i], h7_log, h7_now);
+    unsigned lo = (unsigned)s->port.base, hi = (unsigned)s->port.base_hi;
+    if (!r) {
+        s->board.llio.comp_id = comp_id;
+        r = hm2_register(&s->board.llio, config[i]);
+    }
+    if (r) {
+        rtapi_print_msg(RTAPI_MSG_ERR,
+                        "%s: board at (ioaddr=0x%04X, ioaddr_hi=0x%04X, epp_wide %s) not found!\n",
+                        s->board.llio.name[0] ? s->board.llio.name : "hm2_7i43", lo, hi,
+                        s->board.epp_wide ? "ON" : "OFF");
+        return r;
+    }
+    s->registered = 1;
+    rtapi_print("%s: board at (ioaddr=0x%04X, ioaddr_hi=0x%04X, epp_wide %s) found\n",
+                s->board.llio.name, lo, hi, s->board.epp_wide ? "ON" : "OFF");
+    if (s->port.backend && strcmp(s->port.backend->kind, "raw") != 0)
+        rtapi_print_msg(RTAPI_MSG_INFO, "%s: on port %s\n", s->board.llio.name, s->port.name);
+    return 0;
+}
+
+int rtapi_app_main(void)
+{
+    int r = 0, n = 0;
+    rtapi_print("hm2_7i43: loading HostMot2 Mesa 7i43 driver version " HM2_7I43_VERSION "\n");
+    comp_id = hal_init("hm2_7i43");
+    if (comp_id < 0)
+        return comp_id;
+    slots = calloc(NB, sizeof(*slots));
+    if (!slots) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_7i43: out of memory\n");
+        r = -ENOMEM;
+        goto fail;
+    }
+    for (int i = 0; i < NB; i++) {
+        if (!board_wanted(i))
+            break;
+        r = setup_one(i);
+        if (r)
+            goto fail;
+        n++;
+    }
+    if (n == 0) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_7i43: no boards given (ioaddr[0] < 0 and no port)\n");
+        r = -EINVAL;
+        goto fail;
+    }
+    hal_ready(comp_id);
+    return 0;
+fail:
+    cleanup();
+    hal_exit(comp_id);
+    comp_id = -1;
+    return r;
+}
+
+void rtapi_app_exit(void)
+{
+    cleanup();
+    if (comp_id >= 0)
+        hal_exit(comp_id);
+    comp_id = -1;
+    rtapi_print("hm2_7i43: driver unloaded\n");
+}

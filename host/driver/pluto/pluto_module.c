@@ -1,0 +1,66 @@
+/* SPDX-License-Identifier: GPL-2.0-or-later */
+/* Load-time steps of the Pluto-P modules (see pluto_module.h). */
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pluto_module.h"
+#include "rtapi.h"
+
+void pluto_rtapi_log(void *ctx, int level, const char *fmt, ...)
+{
+    (void)ctx;
+    va_list ap;
+    va_start(ap, fmt);
+    rtapi_vprint_msg(level == PLUTO_INFO ? RTAPI_MSG_INFO : RTAPI_MSG_ERR, fmt, ap);
+    va_end(ap);
+}
+
+int pluto_module_setup(epp_port_t *port, const char *modname, const char *board,
+                       const char *portspec, long ioaddr, long ioaddr_hi, int epp_wide,
+                       const char *firmware)
+{
+    char err[256], path[1024];
+    uint8_t *image = NULL;
+    size_t len = 0;
+    struct pluto_log log = {pluto_rtapi_log, NULL};
+    int r;
+
+    /* Read the file first: a missing firmware never touches the port. */
+    r = pluto_read_firmware(firmware, &image, &len, path, sizeof(path), err, sizeof(err));
+    if (r) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: %s\n", modname, err);
+        return r;
+    }
+    r = epp_port_open(port, portspec, ioaddr, ioaddr_hi, epp_wide, err, sizeof(err));
+    if (r) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: cannot open the parallel port: %s\n", modname, err);
+        free(image);
+        return r;
+    }
+    rtapi_print_msg(RTAPI_MSG_INFO, "%s: firmware %s (%zu bytes) on port %s\n", modname, path,
+                    len, port->name);
+    if (len < PLUTO_UPLOAD_BYTES)
+        rtapi_print_msg(RTAPI_MSG_INFO,
+                        "%s: firmware %s is shorter than a Pluto-P image (%zu < %u bytes)\n",
+                        modname, path, len, PLUTO_UPLOAD_BYTES);
+    r = pluto_upload(port, image, len, &log);
+    free(image);
+    if (!r)
+        r = pluto_probe(port, board, &log);
+    if (r) {
+        if (r != -EIO)
+            rtapi_print_msg(RTAPI_MSG_ERR, "%s: firmware upload on %s failed: %s\n", modname,
+                            port->name, strerror(-r));
+        else
+            rtapi_print_msg(RTAPI_MSG_ERR,
+                            "%s: the board on %s did not answer after the upload of %s "
+                            "(wrong or damaged firmware file, or no board)\n",
+                            modname, port->name, path);
+        epp_port_close(port);
+        return r;
+    }
+    return 0;
+}
