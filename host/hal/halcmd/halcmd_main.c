@@ -161,11 +161,6 @@ static int interactive(void)
     return result;
 }
 
-static void on_signal(int sig)
-{
-    (void)sig;
-    hc.done = 1;
-}
 
 int main(int argc, char **argv)
 {
@@ -197,7 +192,7 @@ int main(int argc, char **argv)
             const char *av[] = {"exit"};
             int st;
             char *msgs = NULL;
-            if (rtapi_client_request(0, 1, av, &st, &msgs) == 0)
+            if (rtapi_client_request_timeout(0, 1, av, &st, &msgs, 2000) == 0)
                 free(msgs);
             hal_priv_session_kill();
             return 0;
@@ -302,10 +297,6 @@ int main(int argc, char **argv)
         return 1;
     }
     signal(SIGPIPE, SIG_IGN);
-    struct sigaction sa;
-    memset(&sa, 0, sizeof(sa));
-    sa.sa_handler = on_signal;
-    sigaction(SIGTERM, &sa, NULL);
 
     snprintf(hc.comp_name, sizeof(hc.comp_name), "halcmd%d", (int)getpid());
     hc.comp_id = hal_init(hc.comp_name);

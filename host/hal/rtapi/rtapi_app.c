@@ -388,6 +388,13 @@ static void quiesce(void)
     pthread_mutex_unlock(&rt_lock);
 }
 
+static volatile sig_atomic_t got_signal;
+static void on_signal(int sig)
+{
+    (void)sig;
+    got_signal = 1;
+}
+
 /* ---- modules ------------------------------------------------------------------- */
 
 typedef struct module {
@@ -733,10 +740,27 @@ static int do_simrun(int argc, char **argv)
     simrun_prev_running = hal_hdr->threads_running;
     simrun_active = 1;
     hal_hdr->threads_running = 1;
-    while (simrun_active)
-        pthread_cond_wait(&simrun_cond, &rt_lock);
+    int rc = 0;
+    while (simrun_active) {
+        struct timespec dl;
+        clock_gettime(CLOCK_REALTIME, &dl);
+        dl.tv_nsec += 100000000L;
+        if (dl.tv_nsec >= 1000000000L) {
+            dl.tv_nsec -= 1000000000L;
+            dl.tv_sec++;
+        }
+        pthread_cond_timedwait(&simrun_cond, &rt_lock, &dl);
+        if (got_signal && simrun_active) {
+            /* Terminated while running: stop the threads and give up. */
+            hal_hdr->threads_running = 0;
+            __atomic_add_fetch(&hal_hdr->sim_abort, 1, __ATOMIC_RELEASE);
+            rc = -EINTR;
+            while (simrun_active)
+                pthread_cond_wait(&simrun_cond, &rt_lock);
+        }
+    }
     pthread_mutex_unlock(&rt_lock);
-    return 0;
+    return rc;
 }
 
 /* ---- server --------------------------------------------------------------------- */
@@ -853,12 +877,6 @@ static void serve_one(int cfd)
     free(buf);
 }
 
-static volatile sig_atomic_t got_signal;
-static void on_signal(int sig)
-{
-    (void)sig;
-    got_signal = 1;
-}
 
 int main(int argc, char **argv)
 {

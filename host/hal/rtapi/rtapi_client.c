@@ -167,18 +167,28 @@ static int read_all(int fd, void *buf, size_t len)
 }
 
 static int request_once(int start, int argc, const char *const *argv, int *status,
-                        char **messages);
+                        char **messages, int timeout_ms);
+int rtapi_client_request_timeout(int start, int argc, const char *const *argv, int *status,
+                                 char **messages, int timeout_ms);
 
 int rtapi_client_request(int start, int argc, const char *const *argv, int *status,
                          char **messages)
+{
+    return rtapi_client_request_timeout(start, argc, argv, status, messages, 0);
+}
+
+int rtapi_client_request_timeout(int start, int argc, const char *const *argv, int *status,
+                                 char **messages, int timeout_ms)
 {
     /* rtapi_app leaves when nothing is loaded; a request that raced with
      * its exit was never seen by it (the connection is reset before any
      * reply), so it is safe to try again with a fresh one. */
     int rc = -EPIPE;
     for (int attempt = 0; attempt < 5; attempt++) {
-        rc = request_once(start, argc, argv, status, messages);
+        rc = request_once(start, argc, argv, status, messages, timeout_ms);
         if (rc != -EPIPE && rc != -ECONNRESET && rc != -ECONNREFUSED)
+            return rc;
+        if (timeout_ms > 0 && rc != -ECONNREFUSED)
             return rc;
         if (rc == -ECONNREFUSED && !start)
             return rc;
@@ -189,7 +199,7 @@ int rtapi_client_request(int start, int argc, const char *const *argv, int *stat
 }
 
 static int request_once(int start, int argc, const char *const *argv, int *status,
-                        char **messages)
+                        char **messages, int timeout_ms)
 {
     if (messages)
         *messages = NULL;
@@ -211,6 +221,11 @@ static int request_once(int start, int argc, const char *const *argv, int *statu
     if (fd < 0) {
         free(buf);
         return fd;
+    }
+    if (timeout_ms > 0) {
+        struct timeval tv = {timeout_ms / 1000, (timeout_ms % 1000) * 1000};
+        setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
+        setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof(tv));
     }
     int rc = write_all(fd, buf, len + 4);
     free(buf);

@@ -28,4 +28,9 @@ int rtapi_client_connect(int start);
 int rtapi_client_request(int start, int argc, const char *const *argv, int *status,
                          char **messages);
 
+/* The same with a receive/send timeout (ms, 0 = none): -EAGAIN when
+ * rtapi_app does not answer in time. */
+int rtapi_client_request_timeout(int start, int argc, const char *const *argv, int *status,
+                                 char **messages, int timeout_ms);
+
 #endif /* HM_RTAPI_PROTO_H */

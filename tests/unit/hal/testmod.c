@@ -10,6 +10,8 @@
  * hm-testmod.i.update that copies each -in pin to the matching -out pin,
  * counts its calls in `calls` (u32 OUT), stores rtapi_get_time() in `now`
  * (s64 OUT) and the period it was called with in `period` (s32 OUT).
+ * While the `hold` pin is TRUE it first waits like sampler/streamer do,
+ * `while (hold && !rtapi_sim_yield())`, counting in `yields`.
  * fail=1 makes rtapi_app_main fail after creating pins (tests that a
  * failed loadrt leaves nothing behind).
  */
@@ -39,6 +41,8 @@ typedef struct {
     hal_s64_t *s64_in, *s64_out, *s64_io;
     hal_u64_t *u64_in, *u64_out, *u64_io;
     hal_u32_t *calls;
+    hal_bit_t *hold;   /* while TRUE, update waits with rtapi_sim_yield() */
+    hal_u32_t *yields; /* rtapi_sim_yield() calls that said "keep waiting" */
     hal_s64_t *now;
     hal_s32_t *period;
     hal_bit_t bit_ro, bit_rw;
@@ -60,6 +64,8 @@ static void update(void *arg, long period)
     *d->u32_out = *d->u32_in;
     *d->s64_out = *d->s64_in;
     *d->u64_out = *d->u64_in;
+    while (*d->hold && !rtapi_sim_yield())
+        *d->yields += 1;
     *d->calls += 1;
     *d->now = rtapi_get_time();
     *d->period = (hal_s32_t)period;
@@ -108,6 +114,10 @@ int rtapi_app_main(void)
             rc = hal_pin_u32_newf(HAL_OUT, &d->calls, comp_id, "hm-testmod.%d.calls", i);
         if (rc == 0)
             rc = hal_pin_s64_newf(HAL_OUT, &d->now, comp_id, "hm-testmod.%d.now", i);
+        if (rc == 0)
+            rc = hal_pin_bit_newf(HAL_IN, &d->hold, comp_id, "hm-testmod.%d.hold", i);
+        if (rc == 0)
+            rc = hal_pin_u32_newf(HAL_OUT, &d->yields, comp_id, "hm-testmod.%d.yields", i);
         if (rc == 0)
             rc = hal_pin_s32_newf(HAL_OUT, &d->period, comp_id, "hm-testmod.%d.period", i);
         if (rc == 0)
