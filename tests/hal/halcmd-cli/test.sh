@@ -15,3 +15,5 @@ halcmd unload all
 sleep 0.2
 halcmd --session-rtapi-alive; echo "rtapi alive rc=$?"
 halcmd --session-destroy
+# halrun -I: interactive halcmd after the file (here fed from a pipe)
+printf 'list sig\nnewsig late bit\nlist sig\n' | halrun -I x.hal; echo "halrun -I rc=$?"
