@@ -5,20 +5,16 @@ from __future__ import annotations
 import sys
 
 
-def dispatch(nfunct: int, period: int, seconds: float, rtapi_exe: str, out: str, inst: str) -> str:
-    lines = [f"loadrt threads name1=t period1={period}"]
-    if nfunct:
-        lines.append(f"loadrt and2 count={nfunct}")
-        lines += [f"addf and2.{i} t" for i in range(nfunct)]
-    extra = f" {inst}" if inst else ""
-    lines += [
-        "start",
-        "loadusr -w sleep 0.5",
-        f"loadusr -w python3 {sys.path[0]}/cpu.py {rtapi_exe} {out}{extra}",
-        f"loadusr -w sleep {seconds}",
-        f"loadusr -w python3 {sys.path[0]}/cpu.py {rtapi_exe} {out}{extra}",
-        "stop",
-    ]
+def dispatch(nfunct: int, period: int, samples: int) -> str:
+    """A thread with nfunct and2 functions; its own run time (THREAD.time,
+    time-stamp-counter clocks, measured the same way by LinuxCNC 2.9 and
+    us) is read `samples` times while it runs."""
+    lines = [f"loadrt threads name1=t period1={period}", f"loadrt and2 count={nfunct}"]
+    lines += [f"addf and2.{i} t" for i in range(nfunct)]
+    lines += ["start", "loadusr -w sleep 0.5"]
+    for _ in range(samples):
+        lines += ["getp t.time", "loadusr -w sleep 0.01"]
+    lines.append("stop")
     return "\n".join(lines) + "\n"
 
 
@@ -57,8 +53,6 @@ def load2000() -> str:
 if __name__ == "__main__":
     kind = sys.argv[1]
     if kind == "dispatch":
-        n, period, secs, exe, out = sys.argv[2:7]
-        inst = sys.argv[7] if len(sys.argv) > 7 else ""
-        sys.stdout.write(dispatch(int(n), int(period), float(secs), exe, out, inst))
+        sys.stdout.write(dispatch(int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])))
     else:
         sys.stdout.write(load2000())
