@@ -164,6 +164,21 @@ static int do_loadrt_cmd(int argc, char **argv)
         halcmd_error("insmod for %s failed, returned -1\n", mod);
         return status;
     }
+    /* -v lines as LinuxCNC's halcmd prints them (its loadrt runs
+     * rtapi_app as a helper program and waits for the component). */
+    if (hc.verbose) {
+        if (hal_q_component_exists(mod))
+            halcmd_info("Component '%s' ready\n", mod);
+        char self[4096];
+        ssize_t sn = readlink("/proc/self/exe", self, sizeof(self) - 1);
+        if (sn > 0) {
+            self[sn] = '\0';
+            char *slash = strrchr(self, '/');
+            if (slash != NULL)
+                strcpy(slash + 1, "rtapi_app");
+            halcmd_info("Program '%s' started\n", self);
+        }
+    }
     halcmd_info("Realtime module '%s' loaded\n", mod);
     return 0;
 }
@@ -703,6 +718,8 @@ static int do_net_cmd(int argc, char **argv)
     }
     for (int i = 0; i < npins; i++) {
         rc = hal_link(pins[i], sig);
+        if (rc == 0)
+            halcmd_info("Pin '%s' linked to signal '%s'\n", pins[i], sig);
         if (rc) {
             /* Only a concurrent change can get here; undo what we did. */
             for (int j = 0; j < i; j++)

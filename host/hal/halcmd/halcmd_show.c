@@ -120,8 +120,7 @@ static void show_comps(int npat, char **pats)
             o(" %5d %s", c->pid, c->ready ? "ready" : "initializing");
         o("\n");
     }
-    if (!hc.script)
-        o("\n");
+    o("\n");
 }
 
 static void show_pins(int npat, char **pats)
@@ -136,14 +135,17 @@ static void show_pins(int npat, char **pats)
         if (!match_any(npat, pats, p->name))
             continue;
         hal_comp_t *c = SHMPTR(p->owner);
-        o(" %5d  %5s %-3s  %12s  %s", c->id, type5(p->type), hal_pin_dir_name(p->dir),
-          value_pp(p->type, halpr_pin_value(p), buf, sizeof(buf)), p->name);
+        const char *v = value_pp(p->type, halpr_pin_value(p), buf, sizeof(buf));
+        if (hc.script)
+            o("%s %s %s %s %s", c->name, type5(p->type), hal_pin_dir_name(p->dir), v, p->name);
+        else
+            o(" %5d  %5s %-3s  %12s  %s", c->id, type5(p->type), hal_pin_dir_name(p->dir), v,
+              p->name);
         if (p->signal)
             o(" %s %s", pin_arrow(p->dir), ((hal_sig_t *)SHMPTR(p->signal))->name);
         o("\n");
     }
-    if (!hc.script)
-        o("\n");
+    o("\n");
 }
 
 static void show_params(int npat, char **pats)
@@ -158,11 +160,15 @@ static void show_params(int npat, char **pats)
         if (!match_any(npat, pats, p->name))
             continue;
         hal_comp_t *c = SHMPTR(p->owner);
-        o(" %5d  %5s %-3s  %12s  %s\n", c->id, type5(p->type), hal_param_dir_name(p->dir),
-          value_pp(p->type, halpr_param_value(p), buf, sizeof(buf)), p->name);
+        const char *v = value_pp(p->type, halpr_param_value(p), buf, sizeof(buf));
+        if (hc.script)
+            o("%s %s %s %s %s\n", c->name, type5(p->type), hal_param_dir_name(p->dir), v,
+              p->name);
+        else
+            o(" %5d  %5s %-3s  %12s  %s\n", c->id, type5(p->type), hal_param_dir_name(p->dir),
+              v, p->name);
     }
-    if (!hc.script)
-        o("\n");
+    o("\n");
 }
 
 static void show_sigs(int npat, char **pats)
@@ -176,16 +182,25 @@ static void show_sigs(int npat, char **pats)
         hal_sig_t *s = SHMPTR(off);
         if (!match_any(npat, pats, s->name))
             continue;
-        o("%s  %s  %s\n", type5(s->type), value12(s->type, halpr_sig_value(s), buf, sizeof(buf)),
-          s->name);
+        if (hc.script)
+            o("%s  %s  %s", type5(s->type), value_pp(s->type, halpr_sig_value(s), buf, sizeof(buf)),
+              s->name);
+        else
+            o("%s  %s  %s\n", type5(s->type),
+              value12(s->type, halpr_sig_value(s), buf, sizeof(buf)), s->name);
         for (hal_off_t poff = hal_hdr->pin_list; poff; poff = ((hal_pin_t *)SHMPTR(poff))->next) {
             hal_pin_t *p = SHMPTR(poff);
-            if (p->signal == off)
+            if (p->signal != off)
+                continue;
+            if (hc.script)
+                o(" %s %s", sig_arrow(p->dir), p->name);
+            else
                 o("                         %s %s\n", sig_arrow(p->dir), p->name);
         }
+        if (hc.script)
+            o("\n");
     }
-    if (!hc.script)
-        o("\n");
+    o("\n");
 }
 
 static void show_functs(int npat, char **pats)
@@ -199,11 +214,14 @@ static void show_functs(int npat, char **pats)
         if (!match_any(npat, pats, f->name))
             continue;
         hal_comp_t *c = SHMPTR(f->owner);
-        o(" %05d  %08" PRIx64 "  %08" PRIx64 "  %-3s  %5d   %s\n", c->id, f->funct, f->arg,
-          f->uses_fp ? "YES" : "NO", f->users, f->name);
+        if (hc.script)
+            o("%s %08" PRIx64 " %08" PRIx64 " %-3s %2d %s\n", c->name, f->funct, f->arg,
+              f->uses_fp ? "YES" : "NO", f->users, f->name);
+        else
+            o(" %05d  %08" PRIx64 "  %08" PRIx64 "  %-3s  %5d   %s\n", c->id, f->funct, f->arg,
+              f->uses_fp ? "YES" : "NO", f->users, f->name);
     }
-    if (!hc.script)
-        o("\n");
+    o("\n");
 }
 
 static void show_threads(int npat, char **pats)
@@ -221,16 +239,24 @@ static void show_threads(int npat, char **pats)
         hal_pin_t *tp = halpr_find_pin_by_name(pname);
         long runtime = tp ? (long)halpr_pin_value(tp)->s : 0;
         long maxtime = (long)*(hal_s32_t *)SHMPTR(t->maxtime);
-        o("%11ld  %-3s  %20s ( %8ld, %8ld )\n", t->period, t->uses_fp ? "YES" : "NO", t->name,
-          runtime, maxtime);
+        if (hc.script)
+            o("%ld %-3s %s %8ld %ld", t->period, t->uses_fp ? "YES" : "NO", t->name, runtime,
+              maxtime);
+        else
+            o("%11ld  %-3s  %20s ( %8ld, %8ld )\n", t->period, t->uses_fp ? "YES" : "NO",
+              t->name, runtime, maxtime);
         int n = 1;
         for (hal_off_t e = t->funct_list; e; e = ((hal_funct_entry_t *)SHMPTR(e))->next) {
             hal_funct_t *f = SHMPTR(((hal_funct_entry_t *)SHMPTR(e))->funct);
-            o("                 %2d %s\n", n++, f->name);
+            if (hc.script)
+                o(" %s", f->name);
+            else
+                o("                 %2d %s\n", n++, f->name);
         }
+        if (hc.script)
+            o("\n");
     }
-    if (!hc.script)
-        o("\n");
+    o("\n");
 }
 
 static void show_aliases(int is_pin, int npat, char **pats)
@@ -256,10 +282,12 @@ static void show_aliases(int is_pin, int npat, char **pats)
         }
         if (oldname == 0 || !match_any(npat, pats, name))
             continue;
-        o(" %-*s %s\n", HAL_NAME_LEN + 1, name, ((hal_oldname_t *)SHMPTR(oldname))->name);
+        if (hc.script)
+            o("%s %s\n", name, ((hal_oldname_t *)SHMPTR(oldname))->name);
+        else
+            o(" %-*s %s\n", HAL_NAME_LEN + 1, name, ((hal_oldname_t *)SHMPTR(oldname))->name);
     }
-    if (!hc.script)
-        o("\n");
+    o("\n");
 }
 
 int do_show_cmd(int argc, char **argv)
