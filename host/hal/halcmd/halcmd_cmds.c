@@ -490,7 +490,7 @@ static int do_loadusr_cmd(int argc, char **argv)
     }
     free(path);
     if (wait_ready) {
-        int ready = 0;
+        int ready = 0, hinted = 0;
         for (int t = 0; !ready; t++) {
             if (hal_q_component_ready(wait_name)) {
                 ready = 1;
@@ -501,8 +501,27 @@ static int do_loadusr_cmd(int argc, char **argv)
                 halcmd_error("%s exited without becoming ready\n", prog);
                 return -ECHILD;
             }
-            if (t > 0 && t % 500 == 0)
-                halcmd_info("Waiting for component '%s' to become ready.\n", wait_name);
+            if (t == 100) {
+                fflush(stdout);
+                fprintf(stderr, "Waiting for component '%s' to become ready.\n", wait_name);
+            }
+            if (t >= 100 && !hinted) {
+                /* The program made a component under another name? */
+                user_comps_t *u = calloc(1, sizeof(*u));
+                if (u != NULL) {
+                    hal_q_foreach(HAL_Q_COMP, NULL, collect_user, u);
+                    for (int k = 0; k < u->n && !hinted; k++)
+                        if (u->pids[k] == pid && strcmp(u->names[k], wait_name) != 0) {
+                            fflush(stdout);
+                            fprintf(stderr,
+                                    "While waiting for '%s', component '%s' loaded.\n"
+                                    "Did you specify the correct name via 'loadusr -Wn'?\n",
+                                    wait_name, u->names[k]);
+                            hinted = 1;
+                        }
+                    free(u);
+                }
+            }
             sleep_ms(10);
         }
         halcmd_info("Component '%s' ready\n", wait_name);
