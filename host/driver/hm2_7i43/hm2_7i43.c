@@ -23,16 +23,16 @@ MODULE_DESCRIPTION("HostMot2 Mesa 7i43 low-level driver (EPP)");
 #define NB HM2_7I43_MAX_BOARDS
 
 static int ioaddr[NB] = {0, -1, -1, -1};
-RTAPI_MP_ARRAY_INT(ioaddr, NB, "base address of the parallel port(s) (default: 0 = parport0)");
+RTAPI_MP_ARRAY_INT(ioaddr, NB, "base address of the parallel port(s) (see hm2_7i43(9) manpage)");
 static int ioaddr_hi[NB] = {0, 0, 0, 0};
 RTAPI_MP_ARRAY_INT(ioaddr_hi, NB,
-                   "secondary address of the parallel port(s) (0 = ioaddr+0x400, -1 = none)");
+                   "secondary address of the parallel port(s) (see hm2_7i43(9) manpage)");
 static int epp_wide[NB] = {1, 1, 1, 1};
-RTAPI_MP_ARRAY_INT(epp_wide, NB, "set to 0 to disable wide EPP accesses");
+RTAPI_MP_ARRAY_INT(epp_wide, NB, "set to 0 to disable wide EPP mode (see (hm2_7i43(9) manpage)");
 static char *config[NB];
-RTAPI_MP_ARRAY_STRING(config, NB, "config string for the AnyIO boards (see hostmot2(9) manpage)");
+RTAPI_MP_ARRAY_STRING(config, NB, "config string(s) for the 7i43 board(s) (see hostmot2(9) manpage)");
 static int debug_epp[NB] = {0, 0, 0, 0};
-RTAPI_MP_ARRAY_INT(debug_epp, NB, "Developer/debug use only!  Enable debug logging of most EPP "
+RTAPI_MP_ARRAY_INT(debug_epp, NB, "Developer/debug use only!  Enable debug logging of most EPP\n"
                                   "transfers.");
 static char *port[NB];
 RTAPI_MP_ARRAY_STRING(port, NB, "epp_port per board: raw:ADDR, ppdev:DEV, gpiod:CHIP:LINES, "
@@ -74,8 +74,10 @@ static void cleanup(void)
     if (!slots)
         return;
     for (int i = 0; i < NB; i++) {
-        if (slots[i].registered)
+        if (slots[i].registered) {
+            rtapi_print("%s: releasing board\n", slots[i].board.llio.name);
             hm2_unregister(&slots[i].board.llio);
+        }
         if (slots[i].port_open)
             epp_port_close(&slots[i].port);
     }

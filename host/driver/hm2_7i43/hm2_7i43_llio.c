@@ -54,7 +54,7 @@ static int timed_out(struct hm2_7i43 *b, const char *what, uint32_t addr, uint32
            what, addr, (int)size);
     int r = epp_clear_timeout_hm2(b->port);
     if (r == 1)
-        b->log(H7_ERR, "failed to clear EPP Timeout!\n");
+        b->log(H7_ERR, "hm2_7i43: failed to clear EPP Timeout!\n");
     return -EIO;
 }
 
@@ -238,7 +238,7 @@ static int detect_size(struct hm2_7i43 *b)
     if (r)
         return port_failed(b, "FPGA size detection", r);
     b->llio.fpga_part_number = (v & 0x01) ? "3s400tq144" : "3s200tq144";
-    b->log(H7_DBG, "hm2_7i43: detected FPGA '%s'\n", b->llio.fpga_part_number);
+    b->log(H7_DBG, "%s: detected FPGA '%s'\n", b->llio.name, b->llio.fpga_part_number);
     return 0;
 }
 
@@ -277,17 +277,29 @@ static int h7_program_fpga(hm2_llio_t *llio, const struct hm2_bitfile *bf)
                (unsigned)((double)bf->size / secs / 1024.0));
     }
     if (b->port->wide) {
+        /* some ports do not do 32-bit EPP right: check, fall back to bytes */
         uint32_t cookie = 0;
         r = hm2_7i43_read(llio, 0x100, &cookie, 4);
-        if (r == -EIO || (!r && cookie != COOKIE)) {
+        if (r && r != -EIO)
+            return r;
+        if (r == -EIO || cookie != COOKIE) {
             b->log(H7_PRINT,
                    "%s: Reading cookie with epp_wide failed. (read 0x%08x) Falling back to "
                    "byte transfers\n",
                    llio->name, cookie);
             b->port->wide = 0;
             b->epp_wide = 0;
-        } else if (r) {
-            return r;
+            cookie = 0;
+            r = hm2_7i43_read(llio, 0x100, &cookie, 4);
+            if (r && r != -EIO)
+                return r;
+            if (r == 0 && cookie == COOKIE)
+                b->log(H7_PRINT, "%s: Successfully read cookie after selecting byte transfers\n",
+                       llio->name);
+            else
+                b->log(H7_PRINT,
+                       "%s: Reading cookie still failed without epp_wide. (read 0x%08x)\n",
+                       llio->name, cookie);
         }
     }
     return 0;
@@ -333,7 +345,7 @@ int hm2_7i43_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int ep
     if (r < 0)
         return port_failed(b, "port setup", r);
     if (r == 1)
-        log(H7_ERR, "failed to clear EPP Timeout!\n");
+        log(H7_ERR, "hm2_7i43: failed to clear EPP Timeout!\n");
     r = hm2_7i43_reset(&b->llio);
     if (r)
         return r;

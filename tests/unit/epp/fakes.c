@@ -337,6 +337,8 @@ static uint32_t r_inl(void *ctx, unsigned long port)
     struct fake_raw *f = ctx;
     int off = raw_off(f, port);
     PCLOG(f->pc, "inl(+%d) ", off);
+    if (f->wide_broken)
+        return 0xFFFFFFFFu;
     uint32_t v = 0;
     for (int i = 0; i < 4; i++)
         v |= (uint32_t)pcport_in8(f->pc, off) << (8 * i);

@@ -100,6 +100,7 @@ struct fake_raw {
     int ioperm_calls;
     unsigned long last_from, last_num;
     int perm_on;
+    int wide_broken; /* inl returns 0xFFFFFFFF without bus cycles */
 };
 struct epp_raw_io fake_raw_io(struct fake_raw *f);
 

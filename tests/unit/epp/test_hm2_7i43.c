@@ -89,7 +89,7 @@ static void test_setup(void)
           B.llio.send_queued_writes && B.llio.reset && B.llio.program_fpga);
     char err[128];
     CHECK_EQ_INT(hm2_llio_validate(&B.llio, err, sizeof(err)), 0);
-    CHECK_EQ_STR(logbuf, "4:hm2_7i43: detected FPGA '3s400tq144'\n");
+    CHECK_EQ_STR(logbuf, "4:hm2_7i43.0: detected FPGA '3s400tq144'\n");
     epp_port_close(&PORT);
     CHECK_EQ_INT(setup_raw(0, 0), 0);
     CHECK_EQ_STR(B.llio.fpga_part_number, "3s200tq144");
@@ -151,8 +151,29 @@ static void test_program(void)
     program(1, 0x12345678, 0);
     CHECK(strstr(logbuf, "0:hm2_7i43.0: Reading cookie with epp_wide failed. (read 0x12345678) "
                          "Falling back to byte transfers\n") != NULL);
+    CHECK(strstr(logbuf, "0:hm2_7i43.0: Reading cookie still failed without epp_wide. (read "
+                         "0x12345678)\n") != NULL);
     CHECK_EQ_INT(PORT.wide, 0);
     CHECK_EQ_INT(B.epp_wide, 0);
+    epp_port_close(&PORT);
+    /* a port whose 32-bit EPP reads are broken: bytes work */
+    CHECK_EQ_INT(setup_raw(1, 1), 0);
+    for (size_t i = 0; i < sizeof(bits); i++)
+        bits[i] = (uint8_t)(i * 37 + 11);
+    P.expect_bits = bits;
+    P.expect_len = sizeof(bits);
+    periph_hm2_set(&P, 0x100, 0x55AACAFE);
+    FR.wide_broken = 1;
+    log_clear();
+    struct hm2_bitfile good = {"x", "3s400tq144", "d", "t", bits, sizeof(bits)};
+    CHECK_EQ_INT(B.llio.program_fpga(&B.llio, &good), 0);
+    CHECK(strstr(logbuf, "Reading cookie with epp_wide failed. (read 0xffffffff) Falling back "
+                         "to byte transfers\n0:hm2_7i43.0: Successfully read cookie after "
+                         "selecting byte transfers\n") != NULL);
+    CHECK_EQ_INT(PORT.wide, 0);
+    uint32_t c = 0;
+    CHECK_EQ_INT(B.llio.read(&B.llio, 0x100, &c, 4), 0);
+    CHECK_EQ_INT(c, 0x55AACAFE);
     epp_port_close(&PORT);
     /* corrupt bitstream: the board stays blank (DONE low) */
     program(0, 0x55AACAFE, 1);
