@@ -1,0 +1,228 @@
+/* SPDX-License-Identifier: GPL-2.0-or-later */
+/* vboard_client.c - see vboard_client.h. */
+#define _GNU_SOURCE
+#include "vboard_client.h"
+
+#include <errno.h>
+#include <poll.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <time.h>
+#include <unistd.h>
+
+static int64_t now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+static int grow(uint8_t **buf, size_t *cap, size_t need)
+{
+    if (need <= *cap)
+        return 0;
+    size_t n = *cap ? *cap : 4096;
+    while (n < need)
+        n *= 2;
+    uint8_t *p = realloc(*buf, n);
+    if (!p)
+        return -ENOMEM;
+    *buf = p;
+    *cap = n;
+    return 0;
+}
+
+/* Transport failure: remember why, drop the connection. */
+static int fail(vbc_t *c, int rc, const char *what)
+{
+    snprintf(c->err, sizeof c->err, "virtual board %s: %s", c->path, what);
+    if (c->fd >= 0) {
+        close(c->fd);
+        c->fd = -1;
+    }
+    return rc;
+}
+
+int vbc_open(vbc_t *c, const char *path)
+{
+    memset(c, 0, sizeof *c);
+    c->fd = -1;
+    c->timeout_ms = 5000;
+    if (!path || !*path || strlen(path) >= sizeof c->path) {
+        snprintf(c->err, sizeof c->err, "virtual board socket path '%s' is empty or too long",
+                 path ? path : "");
+        return -EINVAL;
+    }
+    snprintf(c->path, sizeof c->path, "%s", path);
+    return vbc_reconnect(c);
+}
+
+int vbc_reconnect(vbc_t *c)
+{
+    if (c->fd >= 0) {
+        close(c->fd);
+        c->fd = -1;
+    }
+    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) {
+        snprintf(c->err, sizeof c->err, "virtual board %s: socket: %s", c->path, strerror(errno));
+        return -errno;
+    }
+    struct sockaddr_un sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sun_family = AF_UNIX;
+    memcpy(sa.sun_path, c->path, strlen(c->path));
+    if (connect(fd, (struct sockaddr *)&sa, sizeof sa) < 0) {
+        int e = errno;
+        snprintf(c->err, sizeof c->err, "virtual board %s: cannot connect: %s", c->path,
+                 strerror(e));
+        close(fd);
+        return e == ENOENT || e == ECONNREFUSED ? -ENODEV : -e;
+    }
+    c->fd = fd;
+    c->err[0] = 0;
+    return 0;
+}
+
+void vbc_close(vbc_t *c)
+{
+    if (c->fd >= 0)
+        close(c->fd);
+    c->fd = -1;
+    free(c->rx);
+    free(c->tx);
+    c->rx = c->tx = NULL;
+    c->rx_cap = c->tx_cap = c->rx_len = c->tx_len = 0;
+}
+
+void vbc_req_start(vbc_t *c)
+{
+    c->tx_len = sizeof(struct vb_header);
+}
+
+int vbc_req_put(vbc_t *c, const void *data, size_t n)
+{
+    if (c->tx_len < sizeof(struct vb_header))
+        c->tx_len = sizeof(struct vb_header);
+    if (grow(&c->tx, &c->tx_cap, c->tx_len + n) < 0) {
+        snprintf(c->err, sizeof c->err, "virtual board %s: out of memory for a %zu-byte request",
+                 c->path, c->tx_len + n);
+        return -ENOMEM;
+    }
+    memcpy(c->tx + c->tx_len, data, n);
+    c->tx_len += n;
+    return 0;
+}
+
+static int send_all(vbc_t *c, const uint8_t *p, size_t n)
+{
+    while (n) {
+        ssize_t w = send(c->fd, p, n, MSG_NOSIGNAL);
+        if (w < 0) {
+            if (errno == EINTR)
+                continue;
+            char m[96];
+            snprintf(m, sizeof m, "send failed: %s (board gone?)", strerror(errno));
+            return fail(c, -ENODEV, m);
+        }
+        p += w;
+        n -= (size_t)w;
+    }
+    return 0;
+}
+
+static int recv_all(vbc_t *c, uint8_t *p, size_t n, int64_t deadline)
+{
+    while (n) {
+        int left = (int)(deadline - now_ms());
+        if (left <= 0)
+            return fail(c, -ETIMEDOUT, "no reply within the timeout");
+        struct pollfd pfd = {.fd = c->fd, .events = POLLIN};
+        int r = poll(&pfd, 1, left);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            return fail(c, -ETIMEDOUT, "no reply within the timeout");
+        ssize_t got = recv(c->fd, p, n, 0);
+        if (got == 0)
+            return fail(c, -ENODEV, "connection closed by the board (board gone?)");
+        if (got < 0) {
+            if (errno == EINTR || errno == EAGAIN)
+                continue;
+            char m[96];
+            snprintf(m, sizeof m, "receive failed: %s", strerror(errno));
+            return fail(c, -ENODEV, m);
+        }
+        p += got;
+        n -= (size_t)got;
+    }
+    return 0;
+}
+
+int vbc_send(vbc_t *c, uint16_t type, uint64_t host_time_ns)
+{
+    if (c->fd < 0) {
+        if (!c->err[0])
+            snprintf(c->err, sizeof c->err, "virtual board %s: not connected", c->path);
+        return -ENODEV;
+    }
+    if (c->tx_len < sizeof(struct vb_header) &&
+        grow(&c->tx, &c->tx_cap, sizeof(struct vb_header)) < 0)
+        return -ENOMEM;
+    if (c->tx_len < sizeof(struct vb_header))
+        c->tx_len = sizeof(struct vb_header);
+    struct vb_header h = {.magic = VB_REQ_MAGIC,
+                          .type = type,
+                          .status = 0,
+                          .length = (uint32_t)(c->tx_len - sizeof h),
+                          .seq = ++c->seq,
+                          .time_ns = host_time_ns};
+    memcpy(c->tx, &h, sizeof h);
+    int rc = send_all(c, c->tx, c->tx_len);
+    c->tx_len = sizeof h;
+    if (rc < 0)
+        return rc;
+    struct vb_header r;
+    int64_t deadline = now_ms() + c->timeout_ms;
+    if ((rc = recv_all(c, (uint8_t *)&r, sizeof r, deadline)) < 0)
+        return rc;
+    if (r.magic != VB_REP_MAGIC || r.seq != h.seq || r.type != type || r.length > VB_MAX_PAYLOAD)
+        return fail(c, -EPROTO, "reply does not match the request (bad magic, seq or type)");
+    if (grow(&c->rx, &c->rx_cap, (size_t)r.length + 1) < 0)
+        return fail(c, -ENOMEM, "out of memory for the reply");
+    if ((rc = recv_all(c, c->rx, r.length, deadline)) < 0)
+        return rc;
+    c->rx_len = r.length;
+    c->board_time_ns = r.time_ns;
+    if (r.status < 0) {
+        c->rx[r.length] = 0;
+        snprintf(c->err, sizeof c->err, "virtual board %s: %s", c->path, (const char *)c->rx);
+        return r.status;
+    }
+    return 0;
+}
+
+int vbc_call(vbc_t *c, uint16_t type, uint64_t host_time_ns, const void *payload, size_t n)
+{
+    vbc_req_start(c);
+    if (n && vbc_req_put(c, payload, n) < 0)
+        return -ENOMEM;
+    return vbc_send(c, type, host_time_ns);
+}
+
+int vbc_hello(vbc_t *c, struct vb_hello *out)
+{
+    int rc = vbc_call(c, VB_HELLO, 0, NULL, 0);
+    if (rc < 0)
+        return rc;
+    if (c->rx_len < sizeof *out) {
+        snprintf(c->err, sizeof c->err, "virtual board %s: short HELLO reply (%zu bytes)", c->path,
+                 c->rx_len);
+        return -EPROTO;
+    }
+    memcpy(out, c->rx, sizeof *out);
+    return 0;
+}
