@@ -495,6 +495,14 @@ static int set_param(void *handle, const char *arg, module_t *m)
     char *copy = strdup(value);
     if (copy == NULL)
         return -ENOMEM;
+    /* halcmd passes config="a b,c d" with its quotes; LinuxCNC's halcmd
+     * drops them before the module sees the value, so arrays split into
+     * "a b" and "c d", not "\"a b" and "c d\"". */
+    size_t vlen = strlen(copy);
+    if (vlen >= 2 && copy[0] == '"' && copy[vlen - 1] == '"') {
+        memmove(copy, copy + 1, vlen - 2);
+        copy[vlen - 2] = '\0';
+    }
     char *items[1024];
     int nitems = 0;
     if (is_array) {
