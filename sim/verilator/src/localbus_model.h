@@ -1,0 +1,243 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+//
+// localbus_model.h - LbModel<V>: one Verilated hm2 local-bus firmware
+// (top from tools/hm2gen, wrapper hm2_top_localbus) running against the
+// pin layer.  Included only by the generated lb_models.cpp, which
+// instantiates it once per Verilated firmware.
+//
+// Clocks.  Board time is in ns.  ClockHigh has an integral period Th (10 ns
+// at 100 MHz, 5 ns at 200 MHz); ClockLow is exactly R = ClockHigh/ClockLow
+// (rounded: 3 for 100 / 33.33 MHz) ClockHigh periods, its rising edge on
+// every R-th ClockHigh rising edge, so the ratio is exact and there is one
+// time base.  The firmware only uses rising edges; ClockLow's falling edge
+// is put on the ClockHigh falling edge of cycle (R-1)/2 for the waveform.
+// Edge k of ClockHigh is at k*Th after the model started.
+#ifndef VBOARD_LOCALBUS_MODEL_H
+#define VBOARD_LOCALBUS_MODEL_H
+
+#include <cerrno>
+#include <cstring>
+#include <memory>
+
+#include "localbus.h"
+#include "verilated.h"
+#include "verilated_vcd_c.h"
+
+namespace vb {
+
+namespace port {
+// Copy pin vectors (32-bit words, pin 0 = bit 0) to and from Verilator's
+// port types, whatever width the firmware has.
+inline void put(CData &d, const uint32_t *w) { d = static_cast<CData>(w[0]); }
+inline void put(SData &d, const uint32_t *w) { d = static_cast<SData>(w[0]); }
+inline void put(IData &d, const uint32_t *w) { d = w[0]; }
+inline void put(QData &d, const uint32_t *w) { d = w[0] | static_cast<QData>(w[1]) << 32; }
+template <std::size_t N> inline void put(VlWide<N> &d, const uint32_t *w)
+{
+    for (std::size_t i = 0; i < N; i++)
+        d[i] = w[i];
+}
+inline void get(CData d, uint32_t *w) { w[0] = d; }
+inline void get(SData d, uint32_t *w) { w[0] = d; }
+inline void get(IData d, uint32_t *w) { w[0] = d; }
+inline void get(QData d, uint32_t *w)
+{
+    w[0] = static_cast<uint32_t>(d);
+    w[1] = static_cast<uint32_t>(d >> 32);
+}
+template <std::size_t N> inline void get(const VlWide<N> &d, uint32_t *w)
+{
+    for (std::size_t i = 0; i < N; i++)
+        w[i] = d[i];
+}
+} // namespace port
+
+template <class V> class LbModel final : public LbModelBase {
+  public:
+    static constexpr int kResetCycles = 4; // ClockLow cycles of rst after configuration
+
+    LbModel(const FwInfo &info, PinBank &pins, uint64_t start)
+        : pins_(pins), th_(1000000000ull / info.clock_high_hz),
+          ratio_((info.clock_high_hz + info.clock_low_hz / 2) / info.clock_low_hz),
+          out_(pins.words()), oe_(pins.words())
+    {
+        ctx_ = std::make_unique<VerilatedContext>();
+        ctx_->traceEverOn(true);
+        m_ = std::make_unique<V>(ctx_.get(), "top");
+        // The model starts at the first ClockHigh edge at or after `start`.
+        next_edge_ = (start + th_ - 1) / th_ * th_;
+        now_ = start;
+        m_->clk_low = 0;
+        m_->clk_high = 0;
+        m_->rst = 1;
+        m_->lb_wr = 0;
+        m_->lb_rd = 0;
+        m_->lb_addr = 0;
+        m_->lb_wdata = 0;
+        port::put(m_->io_in, pins_.inputs());
+        m_->eval();
+        for (int i = 0; i < kResetCycles; i++)
+            low_cycle();
+        m_->rst = 0;
+        low_cycle();
+    }
+
+    ~LbModel() override
+    {
+        if (vcd_)
+            vcd_->close();
+        m_->final();
+    }
+
+    uint64_t now_ns() const override { return now_; }
+
+    void run_until(uint64_t t) override
+    {
+        while (next_edge_ <= t)
+            edge();
+        if (t > now_)
+            now_ = t;
+    }
+
+    int read(const vb_xfer *x, size_t n, std::vector<uint8_t> &out, std::string &err) override
+    {
+        // Read i is on the bus during ClockLow edge i; its data is valid
+        // after edge i+1 (lb_rvalid, hm2_localbus.v).
+        std::vector<uint32_t> addrs;
+        for (size_t i = 0; i < n; i++)
+            for (uint32_t off = 0; off < x[i].size; off += 4)
+                addrs.push_back(x[i].addr + off);
+        size_t base = out.size();
+        out.resize(base + addrs.size() * 4);
+        for (size_t e = 0; e <= addrs.size(); e++) {
+            if (e < addrs.size()) {
+                m_->lb_rd = 1;
+                m_->lb_addr = static_cast<SData>(addrs[e]);
+            } else {
+                m_->lb_rd = 0;
+            }
+            low_cycle();
+            if (e == 0)
+                continue;
+            if (!m_->lb_rvalid) {
+                m_->lb_rd = 0;
+                out.resize(base);
+                err = "local bus: read of 0x" + hex(addrs[e - 1]) +
+                      " got no lb_rvalid from the firmware";
+                return -EIO;
+            }
+            uint32_t v = m_->lb_rdata;
+            std::memcpy(&out[base + (e - 1) * 4], &v, 4); // host is little-endian
+        }
+        return 0;
+    }
+
+    void write(const vb_xfer *x, size_t n, const uint8_t *data) override
+    {
+        for (size_t i = 0; i < n; i++)
+            for (uint32_t off = 0; off < x[i].size; off += 4) {
+                uint32_t v;
+                std::memcpy(&v, data, 4);
+                data += 4;
+                m_->lb_wr = 1;
+                m_->lb_addr = static_cast<SData>(x[i].addr + off);
+                m_->lb_wdata = v;
+                low_cycle();
+            }
+        m_->lb_wr = 0;
+        // Two more clocks: the strobe is registered once, then the module
+        // register takes the value; after that a probe sees the effect.
+        low_cycle();
+        low_cycle();
+    }
+
+    int dump(bool on, const std::string &path, std::string &err) override
+    {
+        if (!on) {
+            if (vcd_) {
+                vcd_->close();
+                vcd_.reset();
+            }
+            return 0;
+        }
+        if (vcd_) {
+            err = "dump: a waveform dump is already running; stop it first";
+            return -EBUSY;
+        }
+        auto f = std::make_unique<VerilatedVcdC>();
+        m_->trace(f.get(), 99);
+        f->open(path.c_str());
+        if (!f->isOpen()) {
+            err = "dump: cannot open " + path + " for writing";
+            return -EIO;
+        }
+        vcd_ = std::move(f);
+        return 0;
+    }
+
+  private:
+    static std::string hex(uint32_t v)
+    {
+        char b[12];
+        std::snprintf(b, sizeof b, "%04x", v);
+        return b;
+    }
+
+    // One ClockHigh cycle: rising edge at next_edge_, falling edge Th/2 later.
+    void edge()
+    {
+        uint64_t t = next_edge_;
+        if (pins_.next_event_ns() <= t)
+            pins_.run_events(t);
+        port::put(m_->io_in, pins_.inputs());
+        unsigned phase = static_cast<unsigned>(k_ % ratio_);
+        m_->clk_high = 1;
+        if (phase == 0)
+            m_->clk_low = 1;
+        m_->eval();
+        if (vcd_)
+            vcd_->dump(t * 1000);
+        port::get(m_->io_out, out_.data());
+        port::get(m_->io_oe, oe_.data());
+        pins_.set_fpga(out_.data(), oe_.data(), t);
+        m_->clk_high = 0;
+        if (phase == (ratio_ - 1) / 2)
+            m_->clk_low = 0;
+        m_->eval();
+        if (vcd_)
+            vcd_->dump(t * 1000 + th_ * 500);
+        k_++;
+        next_edge_ += th_;
+        now_ = t;
+    }
+
+    // Run edges up to and including the next ClockLow rising edge.
+    void low_cycle()
+    {
+        for (;;) {
+            bool low = k_ % ratio_ == 0;
+            edge();
+            if (low)
+                break;
+        }
+    }
+
+    PinBank &pins_;
+    uint64_t th_;
+    uint64_t ratio_;
+    std::vector<uint32_t> out_, oe_;
+    std::unique_ptr<VerilatedContext> ctx_;
+    std::unique_ptr<V> m_;
+    std::unique_ptr<VerilatedVcdC> vcd_;
+    uint64_t next_edge_ = 0, now_ = 0, k_ = 0;
+};
+
+template <class V>
+std::unique_ptr<LbModelBase> make_lb_model(const FwInfo &info, PinBank &pins, uint64_t start)
+{
+    return std::make_unique<LbModel<V>>(info, pins, start);
+}
+
+} // namespace vb
+
+#endif // VBOARD_LOCALBUS_MODEL_H

@@ -1,0 +1,283 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+//
+// vboard - a virtual FPGA board on a Unix-domain socket (docs/vboard.md).
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <getopt.h>
+#include <pthread.h>
+#include <sstream>
+#include <string>
+#include <sys/signalfd.h>
+#include <unistd.h>
+#include <vector>
+
+#include "board.h"
+#include "server.h"
+
+namespace {
+
+struct Options {
+    vb::ServerOptions server;
+    std::string board, firmware, dump;
+    std::vector<vb_loop> loops;
+    std::vector<vb_quad> quads;
+    bool list = false;
+};
+
+void usage(FILE *f)
+{
+    std::fprintf(f,
+                 "usage: vboard --socket PATH --board NAME [--firmware NAME] [--freerun]\n"
+                 "              [--loop FROM:TO[:inv]]... [--loop-file FILE]\n"
+                 "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd] [--log]\n"
+                 "       vboard --list\n"
+                 "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");
+}
+
+bool parse_u32(const std::string &s, uint32_t &v)
+{
+    if (s.empty())
+        return false;
+    char *end = nullptr;
+    errno = 0;
+    unsigned long x = std::strtoul(s.c_str(), &end, 0);
+    if (errno || *end || x > UINT32_MAX || s[0] == '-')
+        return false;
+    v = static_cast<uint32_t>(x);
+    return true;
+}
+
+std::vector<std::string> split(const std::string &s, char sep)
+{
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, sep))
+        out.push_back(item);
+    if (!s.empty() && s.back() == sep)
+        out.push_back("");
+    return out;
+}
+
+// FROM:TO[:inv]
+bool parse_loop(const std::string &spec, vb_loop &l, std::string &err)
+{
+    std::vector<std::string> f = split(spec, ':');
+    l = vb_loop{};
+    if (f.size() < 2 || f.size() > 3 || !parse_u32(f[0], l.from) || !parse_u32(f[1], l.to) ||
+        (f.size() == 3 && f[2] != "inv")) {
+        err = "bad loop '" + spec + "': want FROM:TO or FROM:TO:inv (I/O pin numbers)";
+        return false;
+    }
+    l.invert = f.size() == 3;
+    return true;
+}
+
+// A:B:RATE or A:B:I:RATE[:EVERY]
+bool parse_quad(const std::string &spec, vb_quad &q, std::string &err)
+{
+    std::vector<std::string> f = split(spec, ':');
+    q = vb_quad{};
+    q.pin_index = UINT32_MAX;
+    bool ok = f.size() >= 3 && f.size() <= 5 && parse_u32(f[0], q.pin_a) && parse_u32(f[1], q.pin_b);
+    std::string rate;
+    if (ok && f.size() == 3) {
+        rate = f[2];
+    } else if (ok) {
+        ok = parse_u32(f[2], q.pin_index);
+        rate = f[3];
+        q.index_every = 100;
+        if (ok && f.size() == 5)
+            ok = parse_u32(f[4], q.index_every);
+    }
+    char *end = nullptr;
+    if (ok) {
+        q.counts_per_s = std::strtod(rate.c_str(), &end);
+        ok = !rate.empty() && *end == '\0';
+    }
+    if (!ok)
+        err = "bad quadrature source '" + spec +
+              "': want A:B:RATE or A:B:INDEX:RATE[:EVERY] (pins, counts/s, counts per index)";
+    return ok;
+}
+
+bool read_loop_file(const std::string &path, std::vector<vb_loop> &loops, std::string &err)
+{
+    std::ifstream in(path);
+    if (!in) {
+        err = "cannot read loop file " + path + ": " + std::strerror(errno);
+        return false;
+    }
+    std::string line;
+    for (int no = 1; std::getline(in, line); no++) {
+        size_t hash = line.find('#');
+        if (hash != std::string::npos)
+            line.erase(hash);
+        std::stringstream ss(line);
+        std::string word;
+        while (ss >> word) {
+            vb_loop l;
+            if (!parse_loop(word, l, err)) {
+                err = path + ":" + std::to_string(no) + ": " + err;
+                return false;
+            }
+            loops.push_back(l);
+        }
+    }
+    return true;
+}
+
+int parse_args(int argc, char **argv, Options &o)
+{
+    static const option longopts[] = {
+        {"socket", required_argument, nullptr, 's'},  {"board", required_argument, nullptr, 'b'},
+        {"firmware", required_argument, nullptr, 'f'}, {"freerun", no_argument, nullptr, 'r'},
+        {"loop", required_argument, nullptr, 'l'},    {"loop-file", required_argument, nullptr, 'L'},
+        {"quad", required_argument, nullptr, 'q'},    {"dump", required_argument, nullptr, 'd'},
+        {"log", no_argument, nullptr, 'g'},           {"list", no_argument, nullptr, 'i'},
+        {"help", no_argument, nullptr, 'h'},          {nullptr, 0, nullptr, 0}};
+    std::string err;
+    int c;
+    while ((c = getopt_long(argc, argv, "s:b:f:", longopts, nullptr)) != -1) {
+        vb_loop l;
+        vb_quad q;
+        switch (c) {
+        case 's': o.server.socket_path = optarg; break;
+        case 'b': o.board = optarg; break;
+        case 'f': o.firmware = optarg; break;
+        case 'r': o.server.freerun = true; break;
+        case 'g': o.server.log = true; break;
+        case 'i': o.list = true; break;
+        case 'd': o.dump = optarg; break;
+        case 'l':
+            if (!parse_loop(optarg, l, err))
+                goto bad;
+            o.loops.push_back(l);
+            break;
+        case 'L':
+            if (!read_loop_file(optarg, o.loops, err))
+                goto bad;
+            break;
+        case 'q':
+            if (!parse_quad(optarg, q, err))
+                goto bad;
+            o.quads.push_back(q);
+            break;
+        case 'h': usage(stdout); return 0;
+        default: usage(stderr); return 2;
+        }
+    }
+    if (optind < argc) {
+        err = std::string("unexpected argument '") + argv[optind] + "'";
+        goto bad;
+    }
+    if (!o.list && (o.server.socket_path.empty() || o.board.empty())) {
+        err = "--socket and --board are required";
+        goto bad;
+    }
+    return -1;
+bad:
+    std::fprintf(stderr, "vboard: %s\n", err.c_str());
+    usage(stderr);
+    return 2;
+}
+
+int list_boards()
+{
+    for (size_t i = 0; i < vb::kNumBoardFactories; i++)
+        for (const std::string &name : vb::kBoardFactories[i]->boards()) {
+            std::string err;
+            auto b = vb::kBoardFactories[i]->make(name);
+            std::printf("%s (%s):", name.c_str(), b ? b->fpga_part().c_str() : "?");
+            if (b)
+                for (const std::string &fw : b->firmwares())
+                    std::printf(" %s", fw.c_str());
+            std::printf("\n");
+        }
+    return 0;
+}
+
+// Command-line wiring, applied like the equivalent requests.
+int setup(vb::Board &b, const Options &o)
+{
+    std::string err;
+    if (!o.firmware.empty() && b.load(o.firmware, err) < 0)
+        goto bad;
+    for (const vb_loop &l : o.loops)
+        if (b.pins().loop(l.from, l.to, l.invert != 0, b.now_ns(), err) < 0)
+            goto bad;
+    for (const vb_quad &q : o.quads)
+        if (b.pins().quad(q, b.now_ns(), err) < 0)
+            goto bad;
+    if (!o.dump.empty()) {
+        if (o.dump.size() >= 4 && o.dump.compare(o.dump.size() - 4, 4, ".fst") == 0) {
+            err = "dump " + o.dump + ": this vboard is built with VCD tracing only; use a .vcd path";
+            goto bad;
+        }
+        if (b.dump(true, o.dump, err) < 0)
+            goto bad;
+    }
+    return 0;
+bad:
+    std::fprintf(stderr, "vboard: %s\n", err.c_str());
+    return 1;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    // SIGTERM/SIGINT arrive through a signalfd, so the poll loop handles
+    // them like any other event and the destructors clean up (socket file).
+    // Blocked first thing, before any thread exists (threads inherit it).
+    sigset_t mask;
+    sigemptyset(&mask);
+    sigaddset(&mask, SIGTERM);
+    sigaddset(&mask, SIGINT);
+    pthread_sigmask(SIG_BLOCK, &mask, nullptr);
+    std::signal(SIGPIPE, SIG_IGN);
+
+    Options o;
+    int rc = parse_args(argc, argv, o);
+    if (rc >= 0)
+        return rc;
+    if (o.list)
+        return list_boards();
+
+    std::string err;
+    std::unique_ptr<vb::Board> board = vb::make_board(o.board, err);
+    if (!board) {
+        std::fprintf(stderr, "vboard: %s\n", err.c_str());
+        return 1;
+    }
+    if (setup(*board, o) != 0)
+        return 1;
+
+    int sfd = signalfd(-1, &mask, SFD_CLOEXEC);
+    if (sfd < 0) {
+        std::fprintf(stderr, "vboard: signalfd: %s\n", std::strerror(errno));
+        return 1;
+    }
+    int status;
+    {
+        vb::Server server(*board, o.server);
+        if (server.open(err) < 0) {
+            std::fprintf(stderr, "vboard: %s\n", err.c_str());
+            ::close(sfd);
+            return 1;
+        }
+        std::string fw = board->firmware();
+        std::printf("vboard: ready on %s (%s, %s)\n", o.server.socket_path.c_str(),
+                    board->name().c_str(), fw.empty() ? "blank" : fw.c_str());
+        std::fflush(stdout);
+        status = server.run(sfd);
+    }
+    std::string derr;
+    board->dump(false, "", derr);
+    ::close(sfd);
+    return status;
+}

@@ -1,0 +1,642 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+//
+// server.cpp - the vboard socket server (server.h, docs/vboard-protocol.md).
+#include "server.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/signalfd.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+namespace vb {
+
+namespace {
+constexpr size_t kHdr = sizeof(vb_header);
+constexpr uint32_t kLbWindow = 0x10000;   // the hm2 address space (64 KiB)
+constexpr int kSendTimeoutMs = 5000;      // a client that does not read its replies is dropped
+constexpr uint64_t kFreerunSliceNs = 100000;   // board time per free-running step
+constexpr uint64_t kFreerunMaxLagNs = 50000000; // behind by more: re-base (run as fast as we can)
+
+const char *type_name(uint16_t t)
+{
+    switch (t) {
+    case VB_HELLO: return "HELLO";
+    case VB_READ: return "READ";
+    case VB_WRITE: return "WRITE";
+    case VB_EPP: return "EPP";
+    case VB_EPP_STALL: return "EPP_STALL";
+    case VB_CONFIG: return "CONFIG";
+    case VB_TIME: return "TIME";
+    case VB_PROBE: return "PROBE";
+    case VB_DRIVE: return "DRIVE";
+    case VB_QUAD: return "QUAD";
+    case VB_LOOP: return "LOOP";
+    case VB_PROBE_RESET: return "PROBE_RESET";
+    case VB_DUMP: return "DUMP";
+    default: return "?";
+    }
+}
+
+template <class T> T load(const uint8_t *p)
+{
+    T v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+template <class T> void append(std::vector<uint8_t> &out, const T &v)
+{
+    const uint8_t *b = reinterpret_cast<const uint8_t *>(&v);
+    out.insert(out.end(), b, b + sizeof v);
+}
+} // namespace
+
+std::vector<uint8_t> msg_bytes(const std::string &s) { return {s.begin(), s.end()}; }
+
+#define VB_FAIL(code, text)                                                                        \
+    do {                                                                                           \
+        Reply r_;                                                                                  \
+        r_.status = (code);                                                                        \
+        r_.data = msg_bytes(text);                                                                 \
+        return r_;                                                                                 \
+    } while (0)
+
+Server::Server(Board &board, const ServerOptions &opt)
+    : board_(board), opt_(opt), lockstep_(!opt.freerun)
+{
+}
+
+Server::~Server()
+{
+    for (Conn &c : conns_)
+        ::close(c.fd);
+    if (listen_fd_ >= 0) {
+        ::close(listen_fd_);
+        ::unlink(opt_.socket_path.c_str());
+    }
+}
+
+uint64_t Server::wall_ns() const
+{
+    timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return static_cast<uint64_t>(ts.tv_sec) * 1000000000ull + static_cast<uint64_t>(ts.tv_nsec);
+}
+
+int Server::open(std::string &err)
+{
+    sockaddr_un sa{};
+    sa.sun_family = AF_UNIX;
+    if (opt_.socket_path.empty() || opt_.socket_path.size() >= sizeof sa.sun_path) {
+        err = "socket path '" + opt_.socket_path + "' is empty or longer than " +
+              std::to_string(sizeof sa.sun_path - 1) + " bytes";
+        return -EINVAL;
+    }
+    std::memcpy(sa.sun_path, opt_.socket_path.c_str(), opt_.socket_path.size() + 1);
+    int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) {
+        err = std::string("socket(): ") + std::strerror(errno);
+        return -errno;
+    }
+    // A socket file left by a dead vboard is removed; a live one is not
+    // taken over.
+    struct stat st;
+    if (::lstat(sa.sun_path, &st) == 0) {
+        if (!S_ISSOCK(st.st_mode)) {
+            err = opt_.socket_path + " exists and is not a socket";
+            ::close(fd);
+            return -EEXIST;
+        }
+        if (::connect(fd, reinterpret_cast<sockaddr *>(&sa), sizeof sa) == 0) {
+            err = opt_.socket_path + " is in use by another running board";
+            ::close(fd);
+            return -EADDRINUSE;
+        }
+        ::close(fd);
+        ::unlink(sa.sun_path);
+        fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+        if (fd < 0) {
+            err = std::string("socket(): ") + std::strerror(errno);
+            return -errno;
+        }
+    }
+    if (::bind(fd, reinterpret_cast<sockaddr *>(&sa), sizeof sa) < 0 || ::listen(fd, 8) < 0) {
+        int e = errno;
+        err = "cannot listen on " + opt_.socket_path + ": " + std::strerror(e);
+        ::close(fd);
+        return -e;
+    }
+    listen_fd_ = fd;
+    return 0;
+}
+
+void Server::accept_client()
+{
+    int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
+    if (fd < 0)
+        return;
+    Conn c;
+    c.fd = fd;
+    c.id = next_id_++;
+    conns_.push_back(std::move(c));
+    if (opt_.log)
+        std::fprintf(stderr, "vboard: client %u connected\n", conns_.back().id);
+}
+
+void Server::close_conn(size_t idx)
+{
+    if (opt_.log)
+        std::fprintf(stderr, "vboard: client %u disconnected\n", conns_[idx].id);
+    ::close(conns_[idx].fd);
+    conns_.erase(conns_.begin() + static_cast<long>(idx));
+}
+
+bool Server::on_readable(Conn &c)
+{
+    uint8_t buf[65536];
+    for (;;) {
+        ssize_t n = ::recv(c.fd, buf, sizeof buf, 0);
+        if (n > 0) {
+            c.rx.insert(c.rx.end(), buf, buf + n);
+            continue;
+        }
+        if (n == 0)
+            return process(c) && false; // peer closed: serve what came, then drop
+        if (errno == EINTR)
+            continue;
+        if (errno == EAGAIN || errno == EWOULDBLOCK)
+            return process(c);
+        return false;
+    }
+}
+
+bool Server::process(Conn &c)
+{
+    size_t off = 0;
+    bool alive = true;
+    while (alive && c.rx.size() - off >= kHdr) {
+        vb_header h = load<vb_header>(&c.rx[off]);
+        if (h.magic != VB_REQ_MAGIC) {
+            Reply r;
+            r.status = -EPROTO;
+            char b[120];
+            std::snprintf(b, sizeof b,
+                          "bad request magic 0x%08x (want 0x%08x \"VBRQ\"); closing the connection",
+                          h.magic, VB_REQ_MAGIC);
+            r.data = msg_bytes(b);
+            send_reply(c, h, r);
+            return false;
+        }
+        if (h.length > VB_MAX_PAYLOAD) {
+            Reply r;
+            r.status = -EINVAL;
+            r.data = msg_bytes("request payload of " + std::to_string(h.length) +
+                               " bytes is over the limit of " + std::to_string(VB_MAX_PAYLOAD) +
+                               "; closing the connection");
+            send_reply(c, h, r);
+            return false;
+        }
+        if (c.rx.size() - off < kHdr + h.length)
+            break;
+        Reply r = dispatch(c, h, &c.rx[off + kHdr], h.length);
+        if (opt_.log)
+            std::fprintf(stderr, "vboard: client %u %s seq %u len %u -> %d @%llu ns%s%.*s\n", c.id,
+                         type_name(h.type), h.seq, h.length, r.status,
+                         static_cast<unsigned long long>(board_.now_ns()),
+                         r.status < 0 ? ": " : "", r.status < 0 ? static_cast<int>(r.data.size()) : 0,
+                         r.status < 0 ? reinterpret_cast<const char *>(r.data.data()) : "");
+        alive = send_reply(c, h, r) && !r.close;
+        off += kHdr + h.length;
+    }
+    c.rx.erase(c.rx.begin(), c.rx.begin() + static_cast<long>(off));
+    return alive;
+}
+
+bool Server::send_reply(Conn &c, const vb_header &req, const Reply &r)
+{
+    vb_header h{};
+    h.magic = VB_REP_MAGIC;
+    h.type = req.type;
+    h.status = static_cast<int16_t>(r.status);
+    h.length = static_cast<uint32_t>(r.data.size());
+    h.seq = req.seq;
+    h.time_ns = board_.now_ns();
+    std::vector<uint8_t> out;
+    out.reserve(kHdr + r.data.size());
+    append(out, h);
+    out.insert(out.end(), r.data.begin(), r.data.end());
+    size_t done = 0;
+    while (done < out.size()) {
+        ssize_t n = ::send(c.fd, out.data() + done, out.size() - done, MSG_NOSIGNAL);
+        if (n > 0) {
+            done += static_cast<size_t>(n);
+            continue;
+        }
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+            pollfd p{c.fd, POLLOUT, 0};
+            if (::poll(&p, 1, kSendTimeoutMs) > 0)
+                continue;
+        }
+        return false; // gone (EPIPE, ECONNRESET) or not reading
+    }
+    return true;
+}
+
+void Server::advance_lockstep(Conn &c, uint64_t host_time)
+{
+    if (!lockstep_ || host_time == 0)
+        return;
+    if (!c.have_epoch) {
+        // Board time continues where it is: this host time is "now".
+        c.epoch = static_cast<int64_t>(host_time) - static_cast<int64_t>(board_.now_ns());
+        c.have_epoch = true;
+        return;
+    }
+    int64_t target = static_cast<int64_t>(host_time) - c.epoch;
+    if (target > 0 && static_cast<uint64_t>(target) > board_.now_ns())
+        board_.run_until(static_cast<uint64_t>(target));
+}
+
+Server::Reply Server::dispatch(Conn &c, const vb_header &h, const uint8_t *p, size_t n)
+{
+    advance_lockstep(c, h.time_ns);
+    switch (h.type) {
+    case VB_HELLO: return r_hello();
+    case VB_READ: return r_read(p, n);
+    case VB_WRITE: return r_write(p, n);
+    case VB_EPP: return r_epp(p, n);
+    case VB_EPP_STALL: return r_stall(p, n);
+    case VB_CONFIG: return r_config(p, n);
+    case VB_TIME: return r_time(p, n);
+    case VB_PROBE: return r_probe(p, n, false);
+    case VB_PROBE_RESET: return r_probe(p, n, true);
+    case VB_DRIVE: return r_drive(p, n);
+    case VB_QUAD: return r_quad(p, n);
+    case VB_LOOP: return r_loop(p, n);
+    case VB_DUMP: return r_dump(p, n);
+    default: {
+        char b[80];
+        std::snprintf(b, sizeof b, "unknown request type 0x%02x", h.type);
+        VB_FAIL(-EINVAL, b);
+    }
+    }
+}
+
+Server::Reply Server::r_hello()
+{
+    vb_hello v{};
+    v.version = VB_PROTO_VERSION;
+    v.bus = board_.bus();
+    v.state = board_.configured() ? VB_STATE_CONFIGURED : VB_STATE_BLANK;
+    v.io_pins = board_.pins().size();
+    v.clock_low_hz = board_.clock_low_hz();
+    v.clock_high_hz = board_.clock_high_hz();
+    v.lockstep = lockstep_ ? 1 : 0;
+    std::strncpy(v.board, board_.name().c_str(), sizeof v.board - 1);
+    std::strncpy(v.firmware, board_.firmware().c_str(), sizeof v.firmware - 1);
+    std::strncpy(v.fpga_part, board_.fpga_part().c_str(), sizeof v.fpga_part - 1);
+    Reply r;
+    append(r.data, v);
+    return r;
+}
+
+namespace {
+// Checks one local-bus transfer; "" when fine.
+std::string check_xfer(const vb_xfer &x, const char *what)
+{
+    char b[160];
+    if (x.addr % 4 || x.size % 4) {
+        std::snprintf(b, sizeof b,
+                      "%s of %u bytes at 0x%x: address and size must be multiples of 4", what,
+                      x.size, x.addr);
+        return b;
+    }
+    if (x.addr >= kLbWindow || x.size > kLbWindow - x.addr) {
+        std::snprintf(b, sizeof b,
+                      "%s of %u bytes at 0x%x runs outside the 64 KiB hm2 window", what, x.size,
+                      x.addr);
+        return b;
+    }
+    return "";
+}
+} // namespace
+
+Server::Reply Server::r_read(const uint8_t *p, size_t n)
+{
+    if (n % sizeof(vb_xfer))
+        VB_FAIL(-EPROTO, "READ payload of " + std::to_string(n) +
+                             " bytes is not a list of 8-byte transfers");
+    size_t cnt = n / sizeof(vb_xfer);
+    std::vector<vb_xfer> x(cnt);
+    uint64_t total = 0;
+    for (size_t i = 0; i < cnt; i++) {
+        x[i] = load<vb_xfer>(p + i * sizeof(vb_xfer));
+        std::string e = check_xfer(x[i], "read");
+        if (!e.empty())
+            VB_FAIL(-EINVAL, e);
+        total += x[i].size;
+    }
+    if (total > VB_MAX_PAYLOAD)
+        VB_FAIL(-EINVAL, "read of " + std::to_string(total) + " bytes is over the reply limit");
+    Reply r;
+    std::string err;
+    r.status = board_.lb_read(x.data(), cnt, r.data, err);
+    if (r.status < 0)
+        r.data = msg_bytes(err);
+    return r;
+}
+
+Server::Reply Server::r_write(const uint8_t *p, size_t n)
+{
+    std::vector<vb_xfer> x;
+    std::vector<uint8_t> data;
+    size_t off = 0;
+    while (off < n) {
+        if (n - off < sizeof(vb_xfer))
+            VB_FAIL(-EPROTO, "WRITE payload ends inside a transfer header (at byte " +
+                                 std::to_string(off) + ")");
+        vb_xfer v = load<vb_xfer>(p + off);
+        off += sizeof v;
+        std::string e = check_xfer(v, "write");
+        if (!e.empty())
+            VB_FAIL(-EINVAL, e);
+        if (n - off < v.size)
+            VB_FAIL(-EPROTO, "WRITE payload is shorter than its transfer of " +
+                                 std::to_string(v.size) + " bytes");
+        data.insert(data.end(), p + off, p + off + v.size);
+        off += v.size;
+        x.push_back(v);
+    }
+    Reply r;
+    std::string err;
+    r.status = board_.lb_write(x.data(), x.size(), data.data(), err);
+    if (r.status < 0)
+        r.data = msg_bytes(err);
+    return r;
+}
+
+Server::Reply Server::r_config(const uint8_t *p, size_t n)
+{
+    if (n < sizeof(vb_config))
+        VB_FAIL(-EPROTO, "CONFIG payload of " + std::to_string(n) + " bytes is shorter than 8");
+    vb_config cfg = load<vb_config>(p);
+    if (cfg.op != VB_CONFIG_PROGRAM && n != sizeof cfg)
+        VB_FAIL(-EPROTO, "CONFIG status/reset carries no bitstream");
+    vb_config_status st{};
+    std::string err;
+    Reply r;
+    r.status = board_.config(cfg.op, p + sizeof cfg, n - sizeof cfg, st, err);
+    if (r.status < 0) {
+        r.data = msg_bytes(err);
+        if (opt_.log || cfg.op == VB_CONFIG_PROGRAM)
+            std::fprintf(stderr, "vboard: %s\n", err.c_str());
+    } else {
+        append(r.data, st);
+    }
+    return r;
+}
+
+Server::Reply Server::r_time(const uint8_t *p, size_t n)
+{
+    if (n != sizeof(vb_time))
+        VB_FAIL(-EPROTO, "TIME payload of " + std::to_string(n) + " bytes, want 16");
+    vb_time t = load<vb_time>(p);
+    switch (t.op) {
+    case VB_TIME_ADVANCE:
+        if (t.ns > UINT64_MAX - board_.now_ns())
+            VB_FAIL(-EINVAL, "TIME advance of " + std::to_string(t.ns) + " ns overflows");
+        board_.run_until(board_.now_ns() + t.ns);
+        break;
+    case VB_TIME_LOCKSTEP:
+        lockstep_ = true;
+        for (Conn &c : conns_)
+            c.have_epoch = false;
+        break;
+    case VB_TIME_FREERUN:
+        lockstep_ = false;
+        fr_wall0_ = wall_ns();
+        fr_board0_ = board_.now_ns();
+        break;
+    default:
+        VB_FAIL(-EINVAL, "TIME: unknown operation " + std::to_string(t.op) +
+                             " (0 advance, 1 lockstep, 2 free-run)");
+    }
+    return {};
+}
+
+Server::Reply Server::r_probe(const uint8_t *p, size_t n, bool reset)
+{
+    if (n != 8)
+        VB_FAIL(-EPROTO, std::string(reset ? "PROBE_RESET" : "PROBE") + " payload of " +
+                             std::to_string(n) + " bytes, want 8 (first, count)");
+    uint32_t first = load<uint32_t>(p), count = load<uint32_t>(p + 4);
+    Reply r;
+    std::string err;
+    if (reset) {
+        r.status = board_.pins().probe_reset(first, count, board_.now_ns(), err);
+    } else {
+        std::vector<vb_pin> pins;
+        r.status = board_.pins().probe(first, count, board_.now_ns(), pins, err);
+        if (r.status == 0)
+            for (const vb_pin &v : pins)
+                append(r.data, v);
+    }
+    if (r.status < 0)
+        r.data = msg_bytes(err);
+    return r;
+}
+
+Server::Reply Server::r_drive(const uint8_t *p, size_t n)
+{
+    if (n % sizeof(vb_drive))
+        VB_FAIL(-EPROTO, "DRIVE payload of " + std::to_string(n) +
+                             " bytes is not a list of 8-byte entries");
+    size_t cnt = n / sizeof(vb_drive);
+    PinBank &pins = board_.pins();
+    for (size_t i = 0; i < cnt; i++) { // all or nothing
+        vb_drive d = load<vb_drive>(p + i * sizeof d);
+        if (d.pin >= pins.size())
+            VB_FAIL(-EINVAL, "drive: I/O pin " + std::to_string(d.pin) +
+                                 " does not exist (this board has " +
+                                 std::to_string(pins.size()) + " pins)");
+        if (d.mode > VB_DRIVE_HIGH)
+            VB_FAIL(-EINVAL, "drive: I/O pin " + std::to_string(d.pin) + ": mode " +
+                                 std::to_string(d.mode) +
+                                 " is not release (0), low (1) or high (2)");
+    }
+    std::string err;
+    for (size_t i = 0; i < cnt; i++) {
+        vb_drive d = load<vb_drive>(p + i * sizeof d);
+        pins.drive(d.pin, d.mode, board_.now_ns(), err);
+    }
+    return {};
+}
+
+Server::Reply Server::r_quad(const uint8_t *p, size_t n)
+{
+    if (n != sizeof(vb_quad))
+        VB_FAIL(-EPROTO, "QUAD payload of " + std::to_string(n) + " bytes, want " +
+                             std::to_string(sizeof(vb_quad)));
+    Reply r;
+    std::string err;
+    r.status = board_.pins().quad(load<vb_quad>(p), board_.now_ns(), err);
+    if (r.status < 0)
+        r.data = msg_bytes(err);
+    return r;
+}
+
+Server::Reply Server::r_loop(const uint8_t *p, size_t n)
+{
+    if (n % sizeof(vb_loop))
+        VB_FAIL(-EPROTO, "LOOP payload of " + std::to_string(n) +
+                             " bytes is not a list of 16-byte entries");
+    size_t cnt = n / sizeof(vb_loop);
+    PinBank &pins = board_.pins();
+    for (size_t i = 0; i < cnt; i++) {
+        vb_loop l = load<vb_loop>(p + i * sizeof l);
+        if (l.from >= pins.size() || (l.to != UINT32_MAX && l.to >= pins.size()))
+            VB_FAIL(-EINVAL, "loop " + std::to_string(l.from) + " -> " + std::to_string(l.to) +
+                                 ": pin does not exist (this board has " +
+                                 std::to_string(pins.size()) + " pins)");
+        if (l.from == l.to)
+            VB_FAIL(-EINVAL, "loop: I/O pin " + std::to_string(l.from) +
+                                 " cannot be looped into itself");
+    }
+    std::string err;
+    for (size_t i = 0; i < cnt; i++) {
+        vb_loop l = load<vb_loop>(p + i * sizeof l);
+        pins.loop(l.from, l.to, l.invert != 0, board_.now_ns(), err);
+    }
+    return {};
+}
+
+Server::Reply Server::r_dump(const uint8_t *p, size_t n)
+{
+    if (n < 4)
+        VB_FAIL(-EPROTO, "DUMP payload of " + std::to_string(n) + " bytes, want u32 on + path");
+    uint32_t on = load<uint32_t>(p);
+    std::string path(reinterpret_cast<const char *>(p + 4), n - 4);
+    if (on) {
+        if (path.empty() || path.find('\0') != std::string::npos)
+            VB_FAIL(-EINVAL, "DUMP needs a file path (without NUL bytes)");
+        if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".fst") == 0)
+            VB_FAIL(-ENOTSUP, "dump " + path +
+                                  ": this vboard is built with VCD tracing only; use a .vcd path");
+    }
+    Reply r;
+    std::string err;
+    r.status = board_.dump(on != 0, path, err);
+    if (r.status < 0)
+        r.data = msg_bytes(err);
+    return r;
+}
+
+Server::Reply Server::r_epp(const uint8_t *p, size_t n)
+{
+    Reply r;
+    std::string err;
+    r.status = board_.epp(p, n, r.data, err);
+    if (r.status < 0)
+        r.data = msg_bytes(err);
+    return r;
+}
+
+Server::Reply Server::r_stall(const uint8_t *p, size_t n)
+{
+    if (n != 4)
+        VB_FAIL(-EPROTO, "EPP_STALL payload of " + std::to_string(n) + " bytes, want 4");
+    Reply r;
+    std::string err;
+    r.status = board_.epp_stall(load<uint32_t>(p) != 0, err);
+    if (r.status < 0)
+        r.data = msg_bytes(err);
+    return r;
+}
+
+void Server::freerun_step(uint64_t budget_ns)
+{
+    uint64_t wall0 = wall_ns();
+    for (;;) {
+        uint64_t now = board_.now_ns();
+        uint64_t target = fr_board0_ + (wall_ns() - fr_wall0_);
+        if (target <= now)
+            return;
+        if (target - now > kFreerunMaxLagNs) {
+            // Slower than real time: keep running as fast as we can, but do
+            // not try to catch up on time we could never make up.
+            fr_wall0_ = wall_ns();
+            fr_board0_ = now;
+            target = now + kFreerunSliceNs;
+        }
+        board_.run_until(std::min(target, now + kFreerunSliceNs));
+        if (wall_ns() - wall0 > budget_ns)
+            return;
+    }
+}
+
+int Server::run(int signal_fd)
+{
+    if (!lockstep_) {
+        fr_wall0_ = wall_ns();
+        fr_board0_ = board_.now_ns();
+    }
+    for (;;) {
+        std::vector<pollfd> pf;
+        pf.push_back({signal_fd, POLLIN, 0});
+        pf.push_back({listen_fd_, POLLIN, 0});
+        for (const Conn &c : conns_)
+            pf.push_back({c.fd, POLLIN, 0});
+        int rc = ::poll(pf.data(), pf.size(), lockstep_ ? -1 : 1);
+        if (rc < 0 && errno != EINTR) {
+            std::fprintf(stderr, "vboard: poll: %s\n", std::strerror(errno));
+            return 1;
+        }
+        if (rc > 0 && (pf[0].revents & POLLIN)) {
+            signalfd_siginfo si;
+            if (::read(signal_fd, &si, sizeof si) == sizeof si && opt_.log)
+                std::fprintf(stderr, "vboard: signal %u, exiting\n", si.ssi_signo);
+            return 0;
+        }
+        if (rc > 0) {
+            // Clients first (their fds follow the listener), highest index
+            // first so closing one does not shift the others.
+            for (size_t i = pf.size(); i-- > 2;) {
+                if (!pf[i].revents)
+                    continue;
+                size_t idx = i - 2;
+                if (!on_readable(conns_[idx]))
+                    close_conn(idx);
+            }
+            if (pf[1].revents & POLLIN)
+                accept_client();
+        }
+        if (!lockstep_)
+            freerun_step(2000000);
+    }
+}
+
+std::unique_ptr<Board> make_board(const std::string &board, std::string &err)
+{
+    std::string known;
+    for (size_t i = 0; i < kNumBoardFactories; i++) {
+        if (auto b = kBoardFactories[i]->make(board))
+            return b;
+        for (const std::string &n : kBoardFactories[i]->boards())
+            known += (known.empty() ? "" : ", ") + n;
+    }
+    err = "unknown board '" + board + "' (this vboard knows: " + (known.empty() ? "none" : known) +
+          ")";
+    return nullptr;
+}
+
+} // namespace vb

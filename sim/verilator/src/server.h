@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+//
+// server.h - the vboard socket server: framing, epochs, free-running time,
+// request dispatch to a Board (docs/vboard-protocol.md).
+#ifndef VBOARD_SERVER_H
+#define VBOARD_SERVER_H
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "board.h"
+
+namespace vb {
+
+struct ServerOptions {
+    std::string socket_path;
+    bool freerun = false;
+    bool log = false;
+};
+
+class Server {
+  public:
+    Server(Board &board, const ServerOptions &opt);
+    ~Server();
+    Server(const Server &) = delete;
+    Server &operator=(const Server &) = delete;
+
+    // Bind and listen; -errno with the reason in err.
+    int open(std::string &err);
+    // Serve until SIGTERM/SIGINT (blocked by the caller and passed as a
+    // signalfd).  Returns the exit status.
+    int run(int signal_fd);
+
+  private:
+    struct Conn {
+        int fd;
+        unsigned id;
+        std::vector<uint8_t> rx;
+        bool have_epoch = false;
+        int64_t epoch = 0;
+    };
+    struct Reply {
+        int status = 0;
+        std::vector<uint8_t> data;
+        bool close = false;
+    };
+
+    void accept_client();
+    // false: the connection is gone (closed or must be closed).
+    bool on_readable(Conn &c);
+    bool process(Conn &c);
+    Reply dispatch(Conn &c, const vb_header &h, const uint8_t *p, size_t n);
+    void advance_lockstep(Conn &c, uint64_t host_time);
+    void freerun_step(uint64_t budget_ns);
+    bool send_reply(Conn &c, const vb_header &req, const Reply &r);
+    void close_conn(size_t idx);
+    uint64_t wall_ns() const;
+
+    Reply r_hello();
+    Reply r_read(const uint8_t *p, size_t n);
+    Reply r_write(const uint8_t *p, size_t n);
+    Reply r_config(const uint8_t *p, size_t n);
+    Reply r_time(const uint8_t *p, size_t n);
+    Reply r_probe(const uint8_t *p, size_t n, bool reset);
+    Reply r_drive(const uint8_t *p, size_t n);
+    Reply r_quad(const uint8_t *p, size_t n);
+    Reply r_loop(const uint8_t *p, size_t n);
+    Reply r_dump(const uint8_t *p, size_t n);
+    Reply r_epp(const uint8_t *p, size_t n);
+    Reply r_stall(const uint8_t *p, size_t n);
+
+    Board &board_;
+    ServerOptions opt_;
+    int listen_fd_ = -1;
+    std::vector<Conn> conns_;
+    unsigned next_id_ = 1;
+    bool lockstep_;
+    uint64_t fr_wall0_ = 0, fr_board0_ = 0; // free-running reference point
+};
+
+// Error reply helper.
+std::vector<uint8_t> msg_bytes(const std::string &s);
+
+} // namespace vb
+
+#endif // VBOARD_SERVER_H
