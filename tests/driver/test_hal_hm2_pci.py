@@ -270,3 +270,52 @@ def test_5i20_firmware_without_fpga(tmp_path: Path) -> None:
     assert ("hm2/hm2_5i20.0: board has FPGA '2s200pq208', but the firmware in hm2/5i20/X.BIT "
             "is for FPGA '3s400pq208'") in out
     assert "FPGA did not" not in out
+
+
+HM2PINOUT = bin_path("hm2pinout")
+
+
+def pinout(root: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    env = dict(os.environ)
+    env["HM2_PCI_SYSFS_ROOT"] = str(root)
+    return subprocess.run([str(HM2PINOUT), *args], capture_output=True, text=True, timeout=60,
+                          env=env)
+
+
+@pytest.mark.skipif(not HM2PINOUT.exists(), reason="hm2pinout not built")
+def test_hm2pinout_pci_source(tmp_path: Path) -> None:
+    root = tree(tmp_path)
+    add_device(root, "0000:01:00.0", (0x8086, 0x1234, 0x8086, 0x0001, {0: (0x1000, 0)}, 0))
+    dev = add_device(root, "0000:02:02.0", PLX9030_5I20, IMG_5I20)
+    add_device(root, "0000:03:00.0", MESA_5I25, IMG_5I25)
+    img = tmp_path / "5i20.img"
+    img.write_bytes(IMG_5I20)
+
+    r = pinout(root, "-c", SEED, "pci:0000:02:02.0")
+    assert r.returncode == 0, r.stderr
+    want = [re.sub(" +", " ", w).strip()
+            for w in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})]
+    assert [x for x in squeeze(r.stdout) if "IO Pin " in x] == want
+    # the same report as from the image file itself; short address form
+    r2 = pinout(root, "-c", SEED, "pci:02:02.0")
+    assert r2.stdout == r.stdout
+    assert pinout(root, "-c", SEED, f"image:{img}").stdout == r.stdout
+    # read-only: nothing programmed, enable restored
+    assert (dev / "enable").read_text().startswith("0")
+
+    # first board found, here the 5i20; -n sets the name's index
+    r = pinout(root, "-n", "1", "pci:")
+    assert r.returncode == 0, r.stderr
+    assert "hm2/hm2_5i20.1: 72 I/O Pins used:" in r.stdout
+    r = pinout(root, "pci:0000:03:00.0")
+    assert "hm2/hm2_5i25.0: 34 I/O Pins used:" in r.stdout
+
+    for addr, msg in (("0000:01:00.0", "hm2pinout: PCI device 0000:01:00.0 (8086:1234, subsystem "
+                                       "8086:0001) is not a Mesa Anything-I/O board"),
+                      ("0000:09:00.0", "hm2pinout: no PCI device 0000:09:00.0")):
+        r = pinout(root, f"pci:{addr}")
+        assert r.returncode == 1 and msg in r.stderr and r.stdout == ""
+    empty = tree(tmp_path / "e")
+    r = pinout(empty, "pci:")
+    assert r.returncode == 1
+    assert "no Mesa Anything-I/O PCI board among the 0 devices in" in r.stderr

@@ -16,6 +16,9 @@
 #include "hm2/boards.h"
 #include "hm2/hm2.h"
 #include "hm2/llio_image.h"
+#ifdef HM2PINOUT_HAVE_PCI
+#include "source_pci.h"
+#endif
 
 struct opts {
     const char *board;
@@ -33,6 +36,8 @@ static void usage(FILE *f)
             "usage: hm2pinout [options] SOURCE\n"
             "  SOURCE             image:FILE or FILE: a register image (65536 bytes)\n"
             "                     or an IDROM image (1024 bytes)\n"
+            "                     pci:[ADDR]: a Mesa PCI board via sysfs (first found,\n"
+            "                     or e.g. pci:0000:01:00.0; -b is then ignored)\n"
             "  -b, --board NAME   board whose connectors to use (default 5i20); -b list\n"
             "  -n, --index N      board number in the HAL prefix (default 0)\n"
             "  -c, --config STR   hostmot2 config string (num_encoders=..., ...)\n"
@@ -189,27 +194,45 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *path = o.source;
+    hm2_llio_t *llio = NULL;
+    void *pci = NULL;
+    struct hm2_image_llio *im = NULL;
+    int rc = 1;
+#ifdef HM2PINOUT_HAVE_PCI
+    if (strncmp(path, "pci:", 4) == 0) {
+        if (hm2pinout_open_pci(path + 4, o.index, &llio, &pci))
+            return 1;
+        goto probe;
+    }
+#endif
     if (strncmp(path, "image:", 6) == 0) {
         path += 6;
     } else if (strchr(path, ':') && strncmp(path, "/", 1) != 0) {
-        fprintf(stderr, "hm2pinout: unknown source '%s' (only image:FILE so far)\n", o.source);
+        fprintf(stderr, "hm2pinout: unknown source '%s' (image:FILE, FILE or pci:[ADDR])\n", o.source);
         return 2;
     }
-    struct hm2_image_llio *im = malloc(sizeof(*im));
+    im = malloc(sizeof(*im));
     if (!im) {
         fprintf(stderr, "hm2pinout: out of memory\n");
         return 1;
     }
-    int rc = 1;
     if (open_image(path, b, o.index, im))
         goto out;
+    llio = &im->llio;
+#ifdef HM2PINOUT_HAVE_PCI
+probe:;
+#endif
     struct sink s = {o.no_prefix, 1, o.pin_file && !o.verbose};
     struct hm2_options hopts = {{o.verbose, o.verbose, 0, 0}, NULL};
     int err;
-    hostmot2_t *hm2 = hm2_probe(&im->llio, o.config, &hopts, out_sink, &s, &err);
+    hostmot2_t *hm2 = hm2_probe(llio, o.config, &hopts, out_sink, &s, &err);
     if (!hm2) {
-        fprintf(stderr, "hm2pinout: %s: not a usable HostMot2 image for a %s (%s)\n", path,
-                b->name, strerror(-err));
+        if (pci)
+            fprintf(stderr, "hm2pinout: %s: no usable HostMot2 firmware on %s (%s)\n", path,
+                    llio->name, strerror(-err));
+        else
+            fprintf(stderr, "hm2pinout: %s: not a usable HostMot2 image for a %s (%s)\n", path,
+                    b->name, strerror(-err));
         goto out;
     }
     if (o.pin_file) {
@@ -222,5 +245,8 @@ int main(int argc, char **argv)
     rc = 0;
 out:
     free(im);
+#ifdef HM2PINOUT_HAVE_PCI
+    hm2pinout_close_pci(pci);
+#endif
     return rc;
 }
