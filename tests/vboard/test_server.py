@@ -1,0 +1,288 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""The vboard server: identity, IDROM through the socket, time, clients, bad requests, exit."""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import struct
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+import vboard
+from conftest import fw_json
+from vboard import VBoardClient, VBoardError, VBoardProcess
+
+FIRMWARES = [("5i20", "SVST8_4"), ("5i20", "SV12"), ("5i25", "7I76x2")]
+
+
+@pytest.mark.parametrize("board,fw", FIRMWARES)
+def test_hello_and_idrom_match_the_generated_firmware(sockdir: Path, board: str, fw: str) -> None:
+    desc = fw_json(board, fw)
+    with VBoardProcess(sockdir / "b.sock", board, fw) as p, p.client() as c:
+        h = c.hello()
+        assert (h.version, h.bus, h.state) == (1, vboard.BUS_LOCAL, vboard.STATE_CONFIGURED)
+        assert (h.board, h.firmware, h.fpga_part) == (board, fw, desc["board"]["fpga_part"])
+        assert h.io_pins == desc["board"]["io_width"]
+        assert (h.clock_low_hz, h.clock_high_hz) == (desc["clocks"]["low_hz"], desc["clocks"]["high_hz"])
+        assert h.lockstep
+        assert p.ready_line == f"vboard: ready on {sockdir / 'b.sock'} ({board}, {fw})"
+        # The ID block (cookie, name, IDROM pointer) and the whole IDROM.
+        idb = desc["id_block"]
+        assert c.read(idb["address"], 4) == idb["words"]
+        hexfile = vboard.build_dir() / "generated" / board / fw / f"{fw}.idrom.hex"
+        words = [int(w, 16) for w in hexfile.read_text().split()]
+        # Two transfers in one request: their data concatenated in order.
+        off = desc["idrom"]["offset"]
+        data = c.read_bursts([(off, 512), (off + 512, 4 * len(words) - 512)])
+        assert list(struct.unpack(f"<{len(words)}I", data)) == words
+
+
+def test_reads_take_bus_clocks(client: VBoardClient) -> None:
+    """A burst of N reads costs N+1 ClockLow cycles (pipelined), not N round trips."""
+    t0 = client.now()
+    client.read(0x400, 1)
+    t1 = client.board_time_ns
+    client.read(0x400, 64)
+    t2 = client.board_time_ns
+    period = 30  # ClockLow = 100/3 MHz on the 5i20
+    one, many = t1 - t0, t2 - t1
+    assert one <= 3 * period
+    assert many - one == pytest.approx(63 * period, abs=period)
+
+
+def test_lockstep_time_follows_the_host(client: VBoardClient) -> None:
+    base = 5_000_000_000
+    client.hello(time_ns=base)  # sets this connection's epoch: no jump
+    t0 = client.board_time_ns
+    assert t0 < 1_000_000
+    client.hello(time_ns=base + 123_450)
+    assert client.board_time_ns == t0 + 123_450
+    client.hello(time_ns=base + 100)  # earlier: executed at the current time
+    assert client.board_time_ns == t0 + 123_450
+    client.hello()  # 0: no advance
+    assert client.board_time_ns == t0 + 123_450
+    assert client.advance(10_000) == t0 + 133_450
+    # A second connection has its own epoch: its first time is "now".
+    with VBoardClient(client.path) as other:
+        other.hello(time_ns=7)
+        assert other.board_time_ns == t0 + 133_450
+        other.hello(time_ns=1007)
+        assert other.board_time_ns == t0 + 134_450
+    # Re-entering lockstep re-takes the epochs.
+    client.lockstep()
+    client.hello(time_ns=42)
+    assert client.board_time_ns == t0 + 134_450
+
+
+def test_freerun_advances_with_the_wall_clock(sockdir: Path) -> None:
+    with VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4", ["--freerun"]) as p, p.client() as c:
+        assert not c.hello().lockstep
+        t0 = c.now()
+        time.sleep(0.3)
+        t1 = c.now()
+        # Time passes without requests; at most as fast as the wall clock.
+        assert 0 < t1 - t0 <= 0.3e9 + 50e6
+        # Host times are ignored while free-running.
+        c.hello(time_ns=10**15)
+        assert c.board_time_ns < 10**12
+        c.lockstep()
+        t2 = c.now()
+        time.sleep(0.1)
+        assert c.now() == t2
+
+
+def test_clients_at_once_and_one_after_another(svst: VBoardProcess) -> None:
+    a, b = svst.client(), svst.client()
+    a.write(0x1100, 0x1)  # DDR port 0 bit 0
+    assert b.read32(0x1100) == 0x1
+    a.close()
+    assert b.read32(0x1100) == 0x1
+    b.close()
+    for _ in range(3):
+        with svst.client() as c:
+            assert c.hello().firmware == "SVST8_4"
+
+
+def _raw(path: str) -> socket.socket:
+    s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    s.settimeout(10)
+    s.connect(path)
+    return s
+
+
+def _reply(s: socket.socket) -> tuple[int, int, int, bytes]:
+    head = b""
+    while len(head) < vboard.HEADER.size:
+        chunk = s.recv(vboard.HEADER.size - len(head))
+        if not chunk:
+            raise ConnectionError("closed")
+        head += chunk
+    magic, rtype, status, length, seq, _t = vboard.HEADER.unpack(head)
+    assert magic == vboard.REP_MAGIC
+    data = b""
+    while len(data) < length:
+        data += s.recv(length - len(data))
+    return rtype, status, seq, data
+
+
+def _closed(s: socket.socket) -> bool:
+    try:
+        return s.recv(1) == b""
+    except ConnectionResetError:
+        return True
+
+
+def test_bad_magic_gets_an_error_and_closes_only_that_connection(client: VBoardClient) -> None:
+    s = _raw(client.path)
+    s.sendall(struct.pack("<IHhIIQ", 0xDEADBEEF, vboard.HELLO, 0, 0, 7, 0))
+    rtype, status, seq, msg = _reply(s)
+    assert (status, seq) == (-71, 7)  # -EPROTO
+    assert b"bad request magic 0xdeadbeef" in msg
+    assert _closed(s)
+    assert client.hello().firmware == "SVST8_4"
+
+
+def test_oversize_length_is_refused_and_closes(client: VBoardClient) -> None:
+    s = _raw(client.path)
+    s.sendall(vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.WRITE, 0, vboard.MAX_PAYLOAD + 1, 3, 0))
+    _t, status, _seq, msg = _reply(s)
+    assert status == -22 and b"over the limit" in msg
+    assert _closed(s)
+    assert client.hello().state == vboard.STATE_CONFIGURED
+
+
+@pytest.mark.parametrize(
+    "rtype,payload,status,text",
+    [
+        (0x7F, b"", -22, "unknown request type 0x7f"),
+        (vboard.PROBE, b"\0\0\0\0", -71, "want 8"),
+        (vboard.READ, b"\0" * 12, -71, "not a list of 8-byte transfers"),
+        (vboard.READ, struct.pack("<II", 0x102, 4), -22, "multiples of 4"),
+        (vboard.READ, struct.pack("<II", 0x100, 6), -22, "multiples of 4"),
+        (vboard.READ, struct.pack("<II", 0xFFFC, 8), -22, "outside the 64 KiB"),
+        (vboard.WRITE, struct.pack("<II", 0x1000, 8) + b"\0" * 4, -71, "shorter than its transfer"),
+        (vboard.WRITE, struct.pack("<II", 0x1001, 4) + b"\0" * 4, -22, "multiples of 4"),
+        (vboard.WRITE, b"\0" * 5, -71, "ends inside a transfer header"),
+        (vboard.TIME, struct.pack("<IIQ", 9, 0, 0), -22, "unknown operation 9"),
+        (vboard.TIME, b"\0" * 8, -71, "want 16"),
+        (vboard.CONFIG, b"\0" * 4, -71, "shorter than 8"),
+        (vboard.CONFIG, struct.pack("<II", 7, 0), -22, "unknown operation 7"),
+        (vboard.DRIVE, struct.pack("<II", 72, 1), -22, "does not exist"),
+        (vboard.DRIVE, struct.pack("<II", 3, 5), -22, "mode 5"),
+        (vboard.LOOP, struct.pack("<IIII", 3, 3, 0, 0), -22, "into itself"),
+        (vboard.QUAD, b"\0" * 8, -71, "want 24"),
+        (vboard.DUMP, b"\0\0", -71, "want u32 on"),
+        (vboard.DUMP, struct.pack("<I", 1), -22, "needs a file path"),
+        (vboard.EPP, b"", -95, "no EPP port"),
+        (vboard.EPP_STALL, struct.pack("<I", 1), -95, "no EPP port"),
+    ],
+)
+def test_malformed_requests_get_errors_and_the_connection_goes_on(
+    client: VBoardClient, rtype: int, payload: bytes, status: int, text: str
+) -> None:
+    client.write(0x1100, 0x5)
+    with pytest.raises(VBoardError) as e:
+        client.call(rtype, payload)
+    assert e.value.status == status
+    assert text in e.value.message
+    # Nothing was applied, and the same connection keeps working.
+    assert client.read32(0x1100) == 0x5
+    assert client.pin(3).ext == vboard.EXT_NONE
+
+
+def test_client_disconnect_mid_request(client: VBoardClient) -> None:
+    s = _raw(client.path)
+    s.sendall(vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.WRITE, 0, 100, 1, 0) + b"\0" * 10)
+    s.close()
+    s = _raw(client.path)
+    s.sendall(vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.READ, 0, 8, 1, 0)[:10])
+    s.close()
+    assert client.read32(0x100) == 0x55AACAFE
+
+
+def test_client_that_vanishes_before_its_reply(client: VBoardClient) -> None:
+    s = _raw(client.path)
+    s.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))
+    s.sendall(vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.READ, 0, 8, 1, 0) + struct.pack("<II", 0x400, 4096))
+    s.close()
+    assert client.read32(0x100) == 0x55AACAFE
+
+
+def test_sigterm_exits_cleanly_and_removes_the_socket(sockdir: Path) -> None:
+    p = VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4")
+    with p.client() as c:
+        c.hello()
+        assert p.stop() == 0
+    assert not (sockdir / "b.sock").exists()
+
+
+def test_stale_socket_file_is_replaced_but_a_live_one_is_not(sockdir: Path) -> None:
+    path = sockdir / "b.sock"
+    dead = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    dead.bind(str(path))
+    dead.close()
+    with VBoardProcess(path, "5i20", "SVST8_4"):
+        r = subprocess.run(
+            [str(vboard.vboard_binary()), "--socket", str(path), "--board", "5i20"],
+            capture_output=True, text=True, timeout=30,
+        )
+        assert r.returncode == 1
+        assert "in use by another running board" in r.stderr
+
+
+@pytest.mark.parametrize(
+    "args,text",
+    [
+        (["--board", "5i20"], "--socket and --board are required"),
+        (["--socket", "S", "--board", "9x99"], "unknown board '9x99' (this vboard knows: "),
+        (["--socket", "S", "--board", "5i20", "--firmware", "NOPE"], "firmware NOPE is not built"),
+        (["--socket", "S", "--board", "5i20", "--loop", "1-2"], "bad loop '1-2'"),
+        (["--socket", "S", "--board", "5i20", "--loop", "1:99"], "I/O pin 99 does not exist"),
+        (["--socket", "S", "--board", "5i20", "--quad", "1:2"], "bad quadrature source"),
+        (["--socket", "S", "--board", "5i20", "--loop-file", "/nonexistent"], "cannot read loop file"),
+        (["--socket", "S", "--board", "5i20", "--firmware", "SVST8_4", "--dump", "x.fst"], "VCD tracing only"),
+        (["--socket", "S", "--board", "5i20", "extra"], "unexpected argument 'extra'"),
+    ],
+)
+def test_command_line_errors(sockdir: Path, args: list[str], text: str) -> None:
+    args = [a.replace("S", str(sockdir / "s.sock")) if a == "S" else a for a in args]
+    r = subprocess.run([str(vboard.vboard_binary()), *args], capture_output=True, text=True, timeout=30)
+    assert r.returncode != 0
+    assert text in r.stderr
+    assert not (sockdir / "s.sock").exists()
+
+
+def test_list(sockdir: Path) -> None:
+    r = subprocess.run([str(vboard.vboard_binary()), "--list"], capture_output=True, text=True, timeout=30)
+    assert r.returncode == 0
+    assert "5i20 (2s200pq208): SV12 SVST8_4" in r.stdout
+    assert "5i25 (6slx9tqg144): 7I76x2" in r.stdout
+
+
+def test_log_option_reports_requests(sockdir: Path) -> None:
+    p = VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4", ["--log"])
+    with p.client() as c:
+        c.hello()
+        with pytest.raises(VBoardError):
+            c.read(0x2, 1)
+    with p.client() as c2:  # served after client 1's hang-up was seen
+        c2.hello()
+    assert p.stop() == 0
+    assert "HELLO seq 1 len 0 -> 0" in p.stderr_text
+    assert "READ seq 2 len 8 -> -22" in p.stderr_text
+    assert "disconnected" in p.stderr_text
+
+
+def test_signal_while_a_client_is_connected(sockdir: Path) -> None:
+    p = VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4")
+    c = p.client()
+    c.hello()
+    os.kill(p.proc.pid, signal.SIGINT)
+    assert p.proc.wait(timeout=10) == 0
+    with pytest.raises((ConnectionError, OSError)):
+        c.hello()
+    c.close()
