@@ -92,21 +92,39 @@ IMG_5I25 = build_image("5i25", "PIN_7I76x2_34.csv", "PIN_7I76x2_34.modules.csv")
 
 
 def test_no_boards(tmp_path: Path) -> None:
-    """LinuxCNC 2.9's hm2_pci loads without boards (it has no 'no boards'
-    message); so does ours, and nothing of a board is in HAL."""
+    """LinuxCNC 2.9's hm2_pci fails the load with -ENODEV when it found no
+    board (its rtapi_app_main, disassembled: num_boards == 0 -> hal_exit,
+    return -19); ours does too and also says why."""
     root = tree(tmp_path)
     add_device(root, "0000:00:1f.0", (0x8086, 0x1234, 0x8086, 0x0001, {0: (0x1000, 0)}, 0))
     # a PLX 9030 that belongs to some other product: never touched
     other = add_device(root, "0000:01:00.0", (0x10B5, 0x9030, 0x10B5, 0x9050,
                                               PLX9030_5I20[4], 5))
-    r = halrun(tmp_path, root, "loadrt hostmot2\nloadrt hm2_pci\nshow comp\nshow pin\n")
+    r = halrun(tmp_path, root, "loadrt hostmot2\nloadrt hm2_pci\nshow comp\n", "-k")
     out = r.stdout + r.stderr
-    assert r.returncode == 0, out
+    assert r.returncode != 0, out
     assert "hm2_pci: loading Mesa AnyIO HostMot2 driver version 0.7" in out
+    assert f"hm2_pci: no Mesa AnyIO board found in {root}/bus/pci/devices" in out
+    assert "hm2_pci: rtapi_app_main: No such device (-19)" in out
     assert "discovered" not in out
-    assert "hm2_" not in r.stdout.replace("hm2_pci", "")
+    assert "hm2_pci" not in r.stdout.split("Loaded HAL Components:")[-1]
     assert (other / "enable").read_text() == "0\n"
-    assert "hm2_pci: driver unloaded" in out
+
+
+def test_enable_fails(tmp_path: Path) -> None:
+    """A device that cannot be enabled fails the load (2.9: failed_errno =
+    -ENODEV after 'failed to enable PCI device')."""
+    root = tree(tmp_path)
+    dev = add_device(root, "0000:01:00.0", MESA_5I25, IMG_5I25)
+    (dev / "enable").unlink()
+    (dev / "enable").mkdir()
+    r = halrun(tmp_path, root, "loadrt hostmot2\nloadrt hm2_pci\n")
+    out = r.stdout + r.stderr
+    assert r.returncode != 0
+    assert ("hm2_pci: skipping AnyIO board at 0000:01:00.0, failed to enable PCI device"
+            in out)
+    assert "/0000:01:00.0/enable: Is a directory" in out
+    assert "hm2_pci: rtapi_app_main: No such device (-19)" in out
 
 
 SEED = "num_encoders=1 num_pwmgens=1 num_stepgens=3"
@@ -193,15 +211,16 @@ def test_two_boards_config_per_board(tmp_path: Path) -> None:
     assert "hm2/hm2_5i25.0: 34 I/O Pins used:" in lines
 
 
-def test_more_than_four_boards(tmp_path: Path) -> None:
+def test_more_than_eight_boards(tmp_path: Path) -> None:
+    """2.9 handles 8 boards (config[8]); a ninth is skipped, not fatal."""
     root = tree(tmp_path)
-    for i in range(5):
+    for i in range(9):
         add_device(root, f"0000:0{i + 1}:00.0", MESA_5I25, IMG_5I25)
     r = halrun(tmp_path, root, "loadrt hostmot2\nloadrt hm2_pci\n")
     out = r.stdout + r.stderr
     assert r.returncode == 0, out
-    assert "hm2_5i25.3: initialized AnyIO board at 0000:04:00.0" in out
-    assert ("hm2_pci: skipping AnyIO board at 0000:05:00.0, this driver can only handle 4"
+    assert "hm2_5i25.7: initialized AnyIO board at 0000:08:00.0" in out
+    assert ("hm2_pci: skipping AnyIO board at 0000:09:00.0, this driver can only handle 8"
             in out)
 
 

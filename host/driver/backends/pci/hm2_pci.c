@@ -72,8 +72,8 @@ static void cleanup(void)
     num_boards = 0;
 }
 
-/* One matched device: enable, map, register.  1 skipped, 0 registered,
- * -errno when the board failed (which fails the whole load, as in 2.9). */
+/* One matched device: enable, map, register.  1 skipped (no free slot),
+ * 0 registered, -errno when the board failed. */
 static int probe_one(const struct pci_sysfs_dev *dev, const struct hm2_pci_id *id)
 {
     char err[PCI_SYSFS_PATH_LEN + 64];
@@ -88,7 +88,7 @@ static int probe_one(const struct pci_sysfs_dev *dev, const struct hm2_pci_id *i
         rtapi_print("hm2_pci: skipping AnyIO board at %s, failed to enable PCI device\n",
                     dev->addr);
         rtapi_print_msg(RTAPI_MSG_ERR, "hm2_pci:     %s\n", err);
-        return 1;
+        return -ENODEV;
     }
     const struct hm2_pci_id *done[NB];
     for (int i = 0; i < num_boards; i++)
@@ -129,13 +129,24 @@ static int probe_all(void)
     if (skipped)
         rtapi_print_msg(RTAPI_MSG_DBG, "hm2_pci: %d device(s) in %s/bus/pci/devices without "
                                        "readable ids, ignored\n", skipped, root);
-    for (int i = 0; i < n && r >= 0; i++) {
+    /* as the kernel's PCI core, every board is probed even after one
+     * failed; the load then fails with the last error (2.9's failed_errno) */
+    int failed = 0;
+    for (int i = 0; i < n; i++) {
         const struct hm2_pci_id *id = hm2_pci_match(&devs[i]);
-        if (id)
-            r = probe_one(&devs[i], id);
+        if (id && (r = probe_one(&devs[i], id)) < 0)
+            failed = r;
     }
     free(devs);
-    return r < 0 ? r : 0;
+    if (failed)
+        return failed;
+    if (num_boards == 0) {
+        /* 2.9 fails with -ENODEV here without a message of its own */
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_pci: no Mesa AnyIO board found in %s/bus/pci/devices\n",
+                        root);
+        return -ENODEV;
+    }
+    return 0;
 }
 
 int rtapi_app_main(void)

@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 #define HM2_PCI_VERSION "0.7"
-#define HM2_PCI_MAX_BOARDS 4
+#define HM2_PCI_MAX_BOARDS 8 /* LinuxCNC 2.9: config[8], "can only handle 8" */
 #define HM2_PCI_WINDOW_SIZE 0x10000u
 
 #define HM2_PCI_VENDOR_PLX 0x10B5u
