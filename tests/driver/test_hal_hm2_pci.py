@@ -338,3 +338,36 @@ def test_hm2pinout_pci_source(tmp_path: Path) -> None:
     r = pinout(empty, "pci:")
     assert r.returncode == 1
     assert "no Mesa Anything-I/O PCI board among the 0 devices in" in r.stderr
+
+
+GENERATED_5I25 = BUILD / "generated" / "5i25" / "7I76x2" / "7I76x2.idrom.hex"
+
+
+@pytest.mark.skipif(not (GENERATED_5I25.exists() and HM2PINOUT.exists()),
+                    reason="hm2gen 5i25 output / hm2pinout not built")
+def test_generated_5i25_firmware_over_pci(tmp_path: Path) -> None:
+    """The IDROM hm2gen generated for our 5i25 firmware, placed in a BAR0
+    window (ID block of spec §2 + IDROM at 0x400), loads through hm2_pci
+    and gives the same pin report as hm2pinout on the .idrom.hex file."""
+    mem = bytearray(WINDOW)
+    struct.pack_into("<I", mem, 0x100, 0x55AACAFE)
+    mem[0x104:0x10C] = b"HOSTMOT2"
+    struct.pack_into("<I", mem, 0x10C, 0x400)
+    words = [int(x, 16) for x in GENERATED_5I25.read_text().split()]
+    for i, w in enumerate(words):
+        struct.pack_into("<I", mem, 0x400 + 4 * i, w)
+    root = tree(tmp_path)
+    add_device(root, "0000:01:00.0", MESA_5I25, bytes(mem))
+    cfg = "num_encoders=1 num_stepgens=2"
+    ref = subprocess.run([str(HM2PINOUT), "-b", "5i25", "-c", cfg, str(GENERATED_5I25)],
+                         capture_output=True, text=True, timeout=60)
+    assert ref.returncode == 0, ref.stderr
+    want = [x for x in squeeze(ref.stdout) if "IO Pin " in x]
+    assert len(want) == 34
+    r = halrun(tmp_path, root, f'loadrt hostmot2\nloadrt hm2_pci config="{cfg}"\n'
+               "show pin hm2_5i25.0.stepgen\n")
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    assert [x for x in squeeze(out) if "IO Pin " in x] == want
+    assert "hm2_5i25.0.stepgen.01.position-cmd" in r.stdout
+    assert "hm2_5i25.0.stepgen.02" not in r.stdout

@@ -346,6 +346,31 @@ static void test_9030_lasbrd_sysfs(void)
     hm2_pci_teardown(&b);
 }
 
+/* 9054 through the real sysfs path: CTRL/STAT at BAR1 + 0x6C is an I/O
+ * register; with nothing behind the file DONE reads 0, so the reset
+ * passes and programming ends in the DONE timeout. */
+static void test_9054_sysfs(void)
+{
+    fresh_tree();
+    CHECK_EQ_INT(fake_dev_add(root, "0000:04:00.0", 0x10b5, 0x9056, 0x10b5, 0x3428, BARS_9054, 1), 0);
+    struct pci_sysfs_dev d = dev_of("0000:04:00.0");
+    struct hm2_pci_board b;
+    CHECK_EQ_INT(hm2_pci_setup(&b, &d, hm2_pci_match(&d), 0, NULL, NULL, tlog_sink, &lg), 0);
+    CHECK_EQ_STR(b.llio.name, "hm2_3x20.0");
+    CHECK_EQ_STR(b.llio.fpga_part_number, "3s1500fg456");
+    CHECK_EQ_INT(b.llio.reset(&b.llio), 0);
+    uint32_t ctl = 0;
+    CHECK_EQ_INT(fake_file_read(root, "0000:04:00.0", "resource1", PLX9054_CTRL_STAT, &ctl, 4), 0);
+    CHECK_EQ_INT(ctl, PLX9054_PROGRAM_N | PLX9054_DONE_ENABLE | PLX9054_PROGRAM_ENABLE);
+    struct hm2_bitfile bf = {.part = "3s1500fg456", .data = (const uint8_t *)"\x80", .size = 1};
+    CHECK_EQ_INT(b.llio.program_fpga(&b.llio, &bf), -EIO);
+    CHECK(tlog_find(&lg, "hm2_3x20.0: Error: Not /DONE; programming not completed.", 0) >= 0);
+    uint8_t last = 0;
+    CHECK_EQ_INT(fake_file_read(root, "0000:04:00.0", "resource2", 0, &last, 1), 0);
+    CHECK_EQ_INT(last, 0x01);
+    hm2_pci_teardown(&b);
+}
+
 /* ---- enable file ---- */
 static void test_enable(void)
 {
@@ -629,6 +654,7 @@ int main(void)
     RUN(test_window_5i20);
     RUN(test_window_errors);
     RUN(test_9030_lasbrd_sysfs);
+    RUN(test_9054_sysfs);
     RUN(test_enable);
     RUN(test_9030_program_ok);
     RUN(test_9030_program_faults);
