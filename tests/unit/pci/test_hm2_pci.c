@@ -100,6 +100,54 @@ static void test_scan_and_match(void)
     CHECK(d == NULL && n == 0);
 }
 
+/* The "resource" table and the id files, bad and odd input. */
+static void test_sysfs_parsing(void)
+{
+    fresh_tree();
+    CHECK_EQ_INT(fake_dev_add(root, "0000:01:00.0", 0x10b5, 0x9030, 0x10b5, 0x3131, BARS_9030, 1), 0);
+    struct pci_sysfs_dev d = dev_of("0000:01:00.0");
+    size_t size = 0;
+    int io = -1;
+    char err[600];
+    CHECK_EQ_INT(pci_sysfs_bar_info(&d, 1, &size, &io, err, sizeof(err)), 0);
+    CHECK(size == 0x80 && io == 1);
+    CHECK_EQ_INT(pci_sysfs_bar_info(&d, 5, &size, &io, err, sizeof(err)), 0);
+    CHECK(size == 0x10000 && io == 0);
+    CHECK_EQ_INT(pci_sysfs_bar_info(&d, 3, &size, &io, err, sizeof(err)), -ENOENT);
+    CHECK(strstr(err, "0000:01:00.0: BAR 3 is not assigned") != NULL);
+    CHECK_EQ_INT(pci_sysfs_bar_info(&d, 6, &size, &io, err, sizeof(err)), -EINVAL);
+    CHECK(strstr(err, "BAR 6 does not exist") != NULL);
+    struct pci_bar bar;
+    CHECK_EQ_INT(pci_bar_open(&d, 3, 4, &bar, err, sizeof(err)), -ENOENT);
+    CHECK(bar.fd < 0);
+    /* a truncated table */
+    const char two[] = "0x0 0xff 0x200\n0xe000 0xe07f 0x101\n";
+    char p[4400];
+    snprintf(p, sizeof(p), "%s/bus/pci/devices/0000:01:00.0/resource", root);
+    FILE *f = fopen(p, "w");
+    fputs(two, f);
+    fclose(f);
+    CHECK_EQ_INT(pci_sysfs_bar_info(&d, 1, &size, &io, err, sizeof(err)), 0);
+    CHECK_EQ_INT(pci_sysfs_bar_info(&d, 5, &size, &io, err, sizeof(err)), -EINVAL);
+    CHECK(strstr(err, "/resource: no line for BAR 5") != NULL);
+    /* id files: no newline is fine, > 16 bits and junk are not */
+    uint16_t v = 0;
+    snprintf(p, sizeof(p), "%s/bus/pci/devices/0000:01:00.0/vendor", root);
+    f = fopen(p, "w");
+    fputs("0x2718", f);
+    fclose(f);
+    CHECK_EQ_INT(pci_sysfs_read_id(d.path, "vendor", &v, err, sizeof(err)), 0);
+    CHECK_EQ_INT(v, 0x2718);
+    snprintf(p, sizeof(p), "%s/bus/pci/devices/0000:01:00.0/device", root);
+    f = fopen(p, "w");
+    fputs("0x12345\n", f);
+    fclose(f);
+    CHECK_EQ_INT(pci_sysfs_read_id(d.path, "device", &v, err, sizeof(err)), -EINVAL);
+    CHECK(strstr(err, "is not a 16-bit hex id") != NULL);
+    CHECK_EQ_INT(pci_sysfs_read_id(d.path, "class", &v, err, sizeof(err)), -ENOENT);
+    CHECK(strstr(err, "cannot read") && strstr(err, "/class: No such file or directory"));
+}
+
 /* Every id of spec §16 and the "other ids" paragraph. */
 static void test_id_table(void)
 {
@@ -650,6 +698,7 @@ int main(void)
 {
     make_stream();
     RUN(test_scan_and_match);
+    RUN(test_sysfs_parsing);
     RUN(test_id_table);
     RUN(test_window_5i20);
     RUN(test_window_errors);
