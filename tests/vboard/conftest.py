@@ -40,11 +40,21 @@ def sockdir() -> Iterator[Path]:
     shutil.rmtree(d, ignore_errors=True)
 
 
+def stop_clean(p: vboard.VBoardProcess) -> None:
+    """SIGTERM must end the board with status 0 and no sanitizer report."""
+    status = p.stop()
+    assert "Sanitizer" not in p.stderr_text, p.stderr_text
+    assert status == 0, p.stderr_text
+
+
 @pytest.fixture
 def svst(sockdir: Path) -> Iterator[vboard.VBoardProcess]:
     """A 5i20 running SVST8_4."""
-    with vboard.VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4") as p:
+    p = vboard.VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4")
+    try:
         yield p
+    finally:
+        stop_clean(p)
 
 
 @pytest.fixture

@@ -12,15 +12,19 @@ from pathlib import Path
 import pytest
 import vbfw
 import vboard
-from conftest import fw_json
+from conftest import fw_json, stop_clean
 from vboard import VBoardClient, VBoardError, VBoardProcess
 
 
 @pytest.fixture
 def blank(sockdir: Path) -> Iterator[VBoardClient]:
-    with VBoardProcess(sockdir / "b.sock", "5i20") as p, p.client() as c:
+    p = VBoardProcess(sockdir / "b.sock", "5i20")
+    try:
         assert p.ready_line.endswith("(5i20, blank)")
-        yield c
+        with p.client() as c:
+            yield c
+    finally:
+        stop_clean(p)
 
 
 def _payload(board: str, fw: str) -> bytes:
