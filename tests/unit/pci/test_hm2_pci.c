@@ -157,23 +157,24 @@ static void test_id_table(void)
         int bridge;
         int conns, width;
         const char *part;
+        int leds;
     } want[] = {
-        {0x9030, 0x3131, "5i20", HM2_PCI_PLX9030, 3, 24, "2s200pq208"},
-        {0x9030, 0x3132, "4i65", HM2_PCI_PLX9030, 3, 24, "2s200pq208"},
-        {0x9054, 0x3314, "5i22-1.0M", HM2_PCI_PLX9054, 4, 24, "3s1000fg320"},
-        {0x9054, 0x3313, "5i22-1.5M", HM2_PCI_PLX9054, 4, 24, "3s1500fg320"},
-        {0x9054, 0x3315, "5i23", HM2_PCI_PLX9054, 3, 24, "3s400pq208"},
-        {0x9054, 0x3311, "4i68", HM2_PCI_PLX9054, 3, 24, "3s400pq208"},
-        {0x9054, 0x3133, "4i68", HM2_PCI_PLX9054, 3, 24, "3s400pq208"},
-        {0x9054, 0x3312, "5i21", HM2_PCI_PLX9054, 2, 32, "3s400pq208"},
-        {0x9054, 0x3472, "4I69-16", HM2_PCI_PLX9054, 3, 24, NULL},
-        {0x9054, 0x3473, "4I69-25", HM2_PCI_PLX9054, 3, 24, NULL},
-        {0x9056, 0x3427, "3x20-1.0M", HM2_PCI_PLX9054, 6, 24, "3s1000fg456"},
-        {0x9056, 0x3428, "3x20-1.5M", HM2_PCI_PLX9054, 6, 24, "3s1500fg456"},
-        {0x9056, 0x3429, "3x20-2.0M", HM2_PCI_PLX9054, 6, 24, "3s2000fg456"},
-        {0x5124, 0x5124, "5i24", HM2_PCI_NATIVE, 3, 24, NULL},
-        {0x5125, 0x5125, "5i25", HM2_PCI_NATIVE, 2, 17, "6slx9tqg144"},
-        {0x6125, 0x6125, "6i25", HM2_PCI_NATIVE, 2, 17, "6slx9tqg144"},
+        {0x9030, 0x3131, "5i20", HM2_PCI_PLX9030, 3, 24, "2s200pq208", 8},
+        {0x9030, 0x3132, "4i65", HM2_PCI_PLX9030, 3, 24, "2s200pq208", 8},
+        {0x9054, 0x3314, "5i22-1.0M", HM2_PCI_PLX9054, 4, 24, "3s1000fg320", 8},
+        {0x9054, 0x3313, "5i22-1.5M", HM2_PCI_PLX9054, 4, 24, "3s1500fg320", 8},
+        {0x9054, 0x3315, "5i23", HM2_PCI_PLX9054, 3, 24, "3s400pq208", 2},
+        {0x9054, 0x3311, "4i68", HM2_PCI_PLX9054, 3, 24, "3s400pq208", 4},
+        {0x9054, 0x3133, "4i68", HM2_PCI_PLX9054, 3, 24, "3s400pq208", 4},
+        {0x9054, 0x3312, "5i21", HM2_PCI_PLX9054, 2, 32, "3s400pq208", 8},
+        {0x9054, 0x3472, "4I69-16", HM2_PCI_PLX9054, 3, 24, "6slx16ftg256", 0},
+        {0x9054, 0x3473, "4I69-25", HM2_PCI_PLX9054, 3, 24, "6slx25ftg256", 0},
+        {0x9056, 0x3427, "3x20-1.0M", HM2_PCI_PLX9054, 6, 24, "3s1000fg456", 0},
+        {0x9056, 0x3428, "3x20-1.5M", HM2_PCI_PLX9054, 6, 24, "3s1500fg456", 0},
+        {0x9056, 0x3429, "3x20-2.0M", HM2_PCI_PLX9054, 6, 24, "3s2000fg456", 0},
+        {0x5124, 0x5124, "5i24", HM2_PCI_NATIVE, 3, 24, "6slx16ftg256", 2},
+        {0x5125, 0x5125, "5i25", HM2_PCI_NATIVE, 2, 17, "6slx9tqg144", 2},
+        {0x6125, 0x6125, "6i25", HM2_PCI_NATIVE, 2, 17, "6slx9tqg144", 2},
     };
     for (size_t i = 0; i < sizeof(want) / sizeof(want[0]); i++) {
         int mesa = want[i].bridge == HM2_PCI_NATIVE;
@@ -192,8 +193,8 @@ static void test_id_table(void)
             continue;
         CHECK_EQ_INT(b->num_connectors, want[i].conns);
         CHECK_EQ_INT(b->pins_per_connector, want[i].width);
-        if (want[i].part)
-            CHECK_EQ_STR(b->fpga_part, want[i].part);
+        CHECK_EQ_STR(b->fpga_part, want[i].part);
+        CHECK_EQ_INT(b->num_leds, want[i].leds);
         /* a subsystem vendor that is not PLX/Mesa is another product */
         d.subsystem_vendor = 0x1234;
         CHECK(hm2_pci_match(&d) == NULL);
