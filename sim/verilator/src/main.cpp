@@ -34,6 +34,7 @@ void usage(FILE *f)
                  "usage: vboard --socket PATH --board NAME [--firmware NAME] [--freerun]\n"
                  "              [--loop FROM:TO[:inv]]... [--loop-file FILE]\n"
                  "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd] [--log]\n"
+                 "              [--spin USEC]\n"
                  "       vboard --list\n"
                  "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");
 }
@@ -139,7 +140,8 @@ int parse_args(int argc, char **argv, Options &o)
         {"loop", required_argument, nullptr, 'l'},    {"loop-file", required_argument, nullptr, 'L'},
         {"quad", required_argument, nullptr, 'q'},    {"dump", required_argument, nullptr, 'd'},
         {"log", no_argument, nullptr, 'g'},           {"list", no_argument, nullptr, 'i'},
-        {"help", no_argument, nullptr, 'h'},          {nullptr, 0, nullptr, 0}};
+        {"help", no_argument, nullptr, 'h'},          {"spin", required_argument, nullptr, 'p'},
+        {nullptr, 0, nullptr, 0}};
     std::string err;
     int c;
     while ((c = getopt_long(argc, argv, "s:b:f:", longopts, nullptr)) != -1) {
@@ -153,6 +155,15 @@ int parse_args(int argc, char **argv, Options &o)
         case 'g': o.server.log = true; break;
         case 'i': o.list = true; break;
         case 'd': o.dump = optarg; break;
+        case 'p': {
+            uint32_t us;
+            if (!parse_u32(optarg, us) || us > 1000000) {
+                err = std::string("bad --spin '") + optarg + "': want microseconds, 0..1000000";
+                goto bad;
+            }
+            o.server.spin_us = us;
+            break;
+        }
         case 'l':
             if (!parse_loop(optarg, l, err))
                 goto bad;

@@ -590,13 +590,15 @@ int Server::run(int signal_fd)
         fr_wall0_ = wall_ns();
         fr_board0_ = board_.now_ns();
     }
+    uint64_t spin_until = 0;
     for (;;) {
         std::vector<pollfd> pf;
         pf.push_back({signal_fd, POLLIN, 0});
         pf.push_back({listen_fd_, POLLIN, 0});
         for (const Conn &c : conns_)
             pf.push_back({c.fd, POLLIN, 0});
-        int rc = ::poll(pf.data(), pf.size(), lockstep_ ? -1 : 1);
+        bool spinning = opt_.spin_us && wall_ns() < spin_until;
+        int rc = ::poll(pf.data(), pf.size(), spinning ? 0 : lockstep_ ? -1 : 1);
         if (rc < 0 && errno != EINTR) {
             std::fprintf(stderr, "vboard: poll: %s\n", std::strerror(errno));
             return 1;
@@ -619,6 +621,7 @@ int Server::run(int signal_fd)
             }
             if (pf[1].revents & POLLIN)
                 accept_client();
+            spin_until = wall_ns() + opt_.spin_us * 1000ull;
         }
         if (!lockstep_)
             freerun_step(2000000);
