@@ -246,6 +246,7 @@ def test_stale_socket_file_is_replaced_but_a_live_one_is_not(sockdir: Path) -> N
         (["--socket", "S", "--board", "5i20", "--loop-file", "/nonexistent"], "cannot read loop file"),
         (["--socket", "S", "--board", "5i20", "--firmware", "SVST8_4", "--dump", "x.fst"], "VCD tracing only"),
         (["--socket", "S", "--board", "5i20", "extra"], "unexpected argument 'extra'"),
+        (["--socket", "S", "--board", "5i20", "--spin", "-1"], "bad --spin '-1'"),
     ],
 )
 def test_command_line_errors(sockdir: Path, args: list[str], text: str) -> None:
@@ -254,6 +255,17 @@ def test_command_line_errors(sockdir: Path, args: list[str], text: str) -> None:
     assert r.returncode != 0
     assert text in r.stderr
     assert not (sockdir / "s.sock").exists()
+
+
+def test_spin_serves_like_the_default(sockdir: Path) -> None:
+    with VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4", ["--spin", "100"]) as p, p.client() as c:
+        t0 = c.now()
+        for _ in range(20):
+            assert c.read32(0x100) == 0x55AACAFE
+        # Spinning does not move lockstep time.
+        time.sleep(0.01)
+        assert c.now() - t0 == 20 * 2 * 30
+        assert p.stop() == 0
 
 
 def test_list(sockdir: Path) -> None:
