@@ -212,3 +212,30 @@ def test_dump_writes_a_vcd(client: VBoardClient, sockdir: Path) -> None:
         client.dump(sockdir / "w.fst")
     with pytest.raises(VBoardError, match="cannot open"):
         client.dump("/nonexistent/dir/w.vcd")
+
+
+def test_watchdog_bites_while_the_host_is_silent(client: VBoardClient) -> None:
+    """Lockstep: a probe client's advance is time passing for the watchdog too
+    (spec §9.2: a Timer value V bites V+1 ClockLow clocks after it is written;
+    the bite makes every pin an input)."""
+    client.write(IO_DATA, 0x0)
+    client.write(IO_DDR, 0x1)
+    assert client.pin(0).oe == 1
+    client.write(0x0C00, 3000)  # 3001 clocks = 90.03 us
+    client.advance(85_000)
+    assert client.read32(0x0D00) & 1 == 0 and client.pin(0).oe == 1
+    client.advance(10_000)
+    assert client.read32(0x0D00) & 1 == 1
+    p = client.pin(0)
+    assert (p.oe, p.level) == (0, 1)
+
+
+def test_dump_from_the_command_line(sockdir: Path) -> None:
+    vcd = sockdir / "start.vcd"
+    p = VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4", ["--dump", str(vcd)])
+    with p.client() as c:
+        c.advance(300)
+    assert p.stop() == 0
+    text = vcd.read_text()
+    assert "$enddefinitions" in text and "lb_rvalid" in text
+    assert text.count("\n#") >= 2 * 300 // 30
