@@ -3,27 +3,13 @@
 
 from __future__ import annotations
 
-import json
 import shutil
-import sys
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
 
 import pytest
-
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tests" / "common"))
-sys.path.insert(0, str(ROOT / "tools" / "vbfw"))
-
-import vboard  # noqa: E402
-
-
-def fw_json(board: str, fw: str) -> dict[str, Any]:
-    """hm2gen's description of a generated firmware (the reference for the tests)."""
-    path = vboard.build_dir() / "generated" / board / fw / f"{fw}.json"
-    return json.loads(path.read_text())
+from vbhelpers import stop_clean, vboard
 
 
 @pytest.fixture(scope="session", autouse=True)
@@ -38,13 +24,6 @@ def sockdir() -> Iterator[Path]:
     d = Path(tempfile.mkdtemp(prefix="vb"))
     yield d
     shutil.rmtree(d, ignore_errors=True)
-
-
-def stop_clean(p: vboard.VBoardProcess) -> None:
-    """SIGTERM must end the board with status 0 and no sanitizer report."""
-    status = p.stop()
-    assert "Sanitizer" not in p.stderr_text, p.stderr_text
-    assert status == 0, p.stderr_text
 
 
 @pytest.fixture

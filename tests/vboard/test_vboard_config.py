@@ -10,9 +10,10 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+import vbhelpers  # noqa: F401  (puts tests/common and tools/vbfw on sys.path)
 import vbfw
 import vboard
-from conftest import fw_json, stop_clean
+from vbhelpers import fw_json, stop_clean
 from vboard import VBoardClient, VBoardError, VBoardProcess
 
 

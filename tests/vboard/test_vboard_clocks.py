@@ -9,7 +9,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import fw_json, stop_clean
+import vbhelpers  # noqa: F401  (puts tests/common and tools/vbfw on sys.path)
+from vbhelpers import fw_json, stop_clean
 from vboard import VBoardProcess
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+import vbhelpers  # noqa: F401  (puts tests/common and tools/vbfw on sys.path)
 from vboard import (
     DRIVE_HIGH,
     DRIVE_LOW,

@@ -12,8 +12,9 @@ import time
 from pathlib import Path
 
 import pytest
+import vbhelpers  # noqa: F401  (puts tests/common and tools/vbfw on sys.path)
 import vboard
-from conftest import fw_json
+from vbhelpers import fw_json
 from vboard import VBoardClient, VBoardError, VBoardProcess
 
 FIRMWARES = [("5i20", "SVST8_4"), ("5i20", "SV12"), ("5i25", "7I76x2")]
