@@ -240,12 +240,13 @@ int PinBank::quad(const vb_quad &in, uint64_t now, std::string &err)
     if (!q) {
         quads_.push_back(Quad{in.pin_a, in.pin_b, in.pin_index, 0, 0.0, 0, now, 0, kNever, false});
         q = &quads_.back();
-    } else if (q->index != UINT32_MAX && q->index != in.pin_index) {
-        // The old index pin is no longer a source pin.
-        uint32_t old = q->index;
-        if (ext_[old] == kQuad)
-            ext_[old] = kNone;
-        refresh(old, now);
+    } else {
+        // Pins the new source no longer uses stop being source pins.
+        for (uint32_t old : {q->b, q->index})
+            if (old != UINT32_MAX && old != in.pin_b && old != in.pin_index && ext_[old] == kQuad) {
+                ext_[old] = kNone;
+                refresh(old, now);
+            }
     }
     q->b = in.pin_b;
     q->index = in.pin_index;
