@@ -221,6 +221,19 @@ def test_sigterm_exits_cleanly_and_removes_the_socket(sockdir: Path) -> None:
     assert not (sockdir / "b.sock").exists()
 
 
+def test_sigterm_ends_a_long_request(sockdir: Path) -> None:
+    p = VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4")
+    s = _raw(p.socket_path)
+    # 100 s of board time: minutes of wall time.
+    s.sendall(vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.TIME, 0, 16, 1, 0) + struct.pack("<IIQ", 0, 0, 10**11))
+    time.sleep(0.3)
+    t0 = time.monotonic()
+    assert p.stop(timeout=20) == 0
+    assert time.monotonic() - t0 < 5
+    s.close()
+    assert not (sockdir / "b.sock").exists()
+
+
 def test_stale_socket_file_is_replaced_but_a_live_one_is_not(sockdir: Path) -> None:
     path = sockdir / "b.sock"
     dead = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)

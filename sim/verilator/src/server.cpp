@@ -252,6 +252,19 @@ bool Server::send_reply(Conn &c, const vb_header &req, const Reply &r)
     return true;
 }
 
+void Server::run_board(uint64_t t)
+{
+    // Long runs go in slices with a look at the signal fd in between, so a
+    // SIGTERM ends even a request that would simulate minutes of wall time.
+    constexpr uint64_t kSliceNs = 200000;
+    while (board_.now_ns() < t && !stopping_) {
+        board_.run_until(std::min(t, board_.now_ns() + kSliceNs));
+        pollfd p{signal_fd_, POLLIN, 0};
+        if (signal_fd_ >= 0 && ::poll(&p, 1, 0) > 0)
+            stopping_ = true;
+    }
+}
+
 void Server::advance_lockstep(Conn &c, uint64_t host_time)
 {
     if (!lockstep_ || host_time == 0)
@@ -264,7 +277,7 @@ void Server::advance_lockstep(Conn &c, uint64_t host_time)
     }
     int64_t target = static_cast<int64_t>(host_time) - c.epoch;
     if (target > 0 && static_cast<uint64_t>(target) > board_.now_ns())
-        board_.run_until(static_cast<uint64_t>(target));
+        run_board(static_cast<uint64_t>(target));
 }
 
 Server::Reply Server::dispatch(Conn &c, const vb_header &h, const uint8_t *p, size_t n)
@@ -415,7 +428,7 @@ Server::Reply Server::r_time(const uint8_t *p, size_t n)
     case VB_TIME_ADVANCE:
         if (t.ns > UINT64_MAX - board_.now_ns())
             VB_FAIL(-EINVAL, "TIME advance of " + std::to_string(t.ns) + " ns overflows");
-        board_.run_until(board_.now_ns() + t.ns);
+        run_board(board_.now_ns() + t.ns);
         break;
     case VB_TIME_LOCKSTEP:
         lockstep_ = true;
@@ -586,6 +599,7 @@ void Server::freerun_step(uint64_t budget_ns)
 
 int Server::run(int signal_fd)
 {
+    signal_fd_ = signal_fd;
     if (!lockstep_) {
         fr_wall0_ = wall_ns();
         fr_board0_ = board_.now_ns();
@@ -622,6 +636,11 @@ int Server::run(int signal_fd)
             if (pf[1].revents & POLLIN)
                 accept_client();
             spin_until = wall_ns() + opt_.spin_us * 1000ull;
+        }
+        if (stopping_) {
+            if (opt_.log)
+                std::fprintf(stderr, "vboard: signal during a request, exiting\n");
+            return 0;
         }
         if (!lockstep_)
             freerun_step(2000000);

@@ -56,6 +56,7 @@ class Server {
     bool process(Conn &c);
     Reply dispatch(Conn &c, const vb_header &h, const uint8_t *p, size_t n);
     void advance_lockstep(Conn &c, uint64_t host_time);
+    void run_board(uint64_t t);
     void freerun_step(uint64_t budget_ns);
     bool send_reply(Conn &c, const vb_header &req, const Reply &r);
     void close_conn(size_t idx);
@@ -81,6 +82,8 @@ class Server {
     unsigned next_id_ = 1;
     bool lockstep_;
     uint64_t fr_wall0_ = 0, fr_board0_ = 0; // free-running reference point
+    int signal_fd_ = -1;
+    bool stopping_ = false; // a signal arrived while a request ran
 };
 
 // Error reply helper.
