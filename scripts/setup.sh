@@ -20,6 +20,7 @@ DEB_PKGS=(
     libclang-rt-14-dev
     libeigen3-dev
     libgpiod-dev
+    liblz4-dev
     libreadline-dev
     libusb-1.0-0-dev
     make
@@ -29,6 +30,7 @@ DEB_PKGS=(
     clang
     valgrind
     yosys
+    zlib1g-dev
 )
 # Optional: only used by `make bench` (nextpnr fmax); failure is not fatal.
 DEB_OPTIONAL=(nextpnr-ice40 fpga-icestorm)

@@ -19,7 +19,10 @@
 #include <cstring>
 #include <memory>
 
+#include <unistd.h>
+
 #include "localbus.h"
+#include "vcd2fst.h"
 #include "verilated.h"
 #include "verilated_vcd_c.h"
 
@@ -84,8 +87,9 @@ template <class V> class LbModel final : public LbModelBase {
 
     ~LbModel() override
     {
-        if (vcd_)
-            vcd_->close();
+        std::string err;
+        if (close_dump(err) < 0)
+            std::fprintf(stderr, "vboard: %s\n", err.c_str());
         m_->final();
     }
 
@@ -153,29 +157,44 @@ template <class V> class LbModel final : public LbModelBase {
 
     int dump(bool on, const std::string &path, std::string &err) override
     {
-        if (!on) {
-            if (vcd_) {
-                vcd_->close();
-                vcd_.reset();
-            }
-            return 0;
-        }
+        if (!on)
+            return close_dump(err);
         if (vcd_) {
             err = "dump: a waveform dump is already running; stop it first";
             return -EBUSY;
         }
+        // FST: trace VCD next to it, converted when the dump is closed.
+        bool fst = path.size() >= 4 && path.compare(path.size() - 4, 4, ".fst") == 0;
+        std::string file = fst ? path + ".tmp.vcd" : path;
         auto f = std::make_unique<VerilatedVcdC>();
         m_->trace(f.get(), 99);
-        f->open(path.c_str());
+        f->open(file.c_str());
         if (!f->isOpen()) {
-            err = "dump: cannot open " + path + " for writing";
+            err = "dump: cannot open " + file + " for writing";
             return -EIO;
         }
         vcd_ = std::move(f);
+        fst_path_ = fst ? path : "";
+        vcd_path_ = file;
         return 0;
     }
 
   private:
+    int close_dump(std::string &err)
+    {
+        if (!vcd_)
+            return 0;
+        vcd_->close();
+        vcd_.reset();
+        int rc = 0;
+        if (!fst_path_.empty()) {
+            rc = vcd_to_fst(vcd_path_, fst_path_, err);
+            ::unlink(vcd_path_.c_str());
+        }
+        fst_path_.clear();
+        return rc;
+    }
+
     static std::string hex(uint32_t v)
     {
         char b[12];
@@ -229,6 +248,7 @@ template <class V> class LbModel final : public LbModelBase {
     std::unique_ptr<VerilatedContext> ctx_;
     std::unique_ptr<V> m_;
     std::unique_ptr<VerilatedVcdC> vcd_;
+    std::string vcd_path_, fst_path_; // fst_path_ set: convert vcd_path_ on close
     uint64_t next_edge_ = 0, now_ = 0, k_ = 0;
 };
 

@@ -17,6 +17,7 @@
 
 #include "board.h"
 #include "server.h"
+#include "vcd2fst.h"
 
 namespace {
 
@@ -225,8 +226,10 @@ int setup(vb::Board &b, const Options &o)
         if (b.pins().quad(q, b.now_ns(), err) < 0)
             goto bad;
     if (!o.dump.empty()) {
-        if (o.dump.size() >= 4 && o.dump.compare(o.dump.size() - 4, 4, ".fst") == 0) {
-            err = "dump " + o.dump + ": this vboard is built with VCD tracing only; use a .vcd path";
+        if (o.dump.size() >= 4 && o.dump.compare(o.dump.size() - 4, 4, ".fst") == 0 &&
+            !vb::have_fst()) {
+            err = "dump " + o.dump +
+                  ": this vboard was built without FST support (liblz4-dev missing); use .vcd";
             goto bad;
         }
         if (b.dump(true, o.dump, err) < 0)

@@ -2,6 +2,7 @@
 //
 // server.cpp - the vboard socket server (server.h, docs/vboard-protocol.md).
 #include "server.h"
+#include "vcd2fst.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -542,9 +543,10 @@ Server::Reply Server::r_dump(const uint8_t *p, size_t n)
     if (on) {
         if (path.empty() || path.find('\0') != std::string::npos)
             VB_FAIL(-EINVAL, "DUMP needs a file path (without NUL bytes)");
-        if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".fst") == 0)
+        if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".fst") == 0 && !have_fst())
             VB_FAIL(-ENOTSUP, "dump " + path +
-                                  ": this vboard is built with VCD tracing only; use a .vcd path");
+                                  ": this vboard was built without FST support (liblz4-dev "
+                                  "missing); use a .vcd path");
     }
     Reply r;
     std::string err;
