@@ -319,14 +319,19 @@ class VBoardProcess:
         args: Sequence[str] = (),
         binary: Path | None = None,
         timeout: float = 30.0,
+        cwd: str | os.PathLike[str] | None = None,
     ) -> None:
-        self.socket_path = str(socket_path)
+        self.socket_path = os.path.abspath(str(socket_path))
         cmd = [str(binary or vboard_binary()), "--socket", self.socket_path, "--board", board]
         if firmware:
             cmd += ["--firmware", firmware]
         cmd += list(args)
         self.cmd = cmd
-        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        # cwd: where relative paths (dumps) land; default: the socket's directory.
+        workdir = cwd if cwd is not None else os.path.dirname(os.path.abspath(self.socket_path))
+        self.proc = subprocess.Popen(
+            cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=workdir
+        )
         self.ready_line = self._wait_ready(timeout)
         self.stderr_text = ""
 

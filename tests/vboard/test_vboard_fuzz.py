@@ -19,6 +19,9 @@ TYPES = [vboard.HELLO, vboard.READ, vboard.WRITE, vboard.EPP, vboard.EPP_STALL, 
 
 def _payload(rng: random.Random, rtype: int) -> bytes:
     choice = rng.random()
+    if rtype == vboard.DUMP:
+        # Never a random path: the board would create that file.
+        return struct.pack("<I", 0) if choice < 0.5 else b"\x01\x00"
     if choice < 0.4:
         return bytes(rng.getrandbits(8) for _ in range(rng.choice([0, 1, 3, 4, 7, 8, 12, 16, 24, 33])))
     # Plausible structures with random fields, small enough to run fast.
@@ -41,8 +44,6 @@ def _payload(rng: random.Random, rtype: int) -> bytes:
         return struct.pack("<IIII", rng.randint(0, 80), rng.choice([rng.randint(0, 80), 2**32 - 1]), 1, 0)
     if rtype == vboard.CONFIG:
         return struct.pack("<II", rng.choice([0, 2, 9]), 0) + bytes(rng.getrandbits(8) for _ in range(rng.randint(0, 80)))
-    if rtype == vboard.DUMP:
-        return struct.pack("<I", 0)
     return b""
 
 
