@@ -30,7 +30,8 @@ cleanup() {
 trap cleanup EXIT
 
 start_board() {
-    "$vb" --socket "$dir/vb.sock" --board 5i20 --firmware SVST8_4 "$@" >"$dir/out" 2>"$dir/err" &
+    "$vb" --socket "$dir/vb.sock" --board "${BOARD:-5i20}" --firmware "${FW:-SVST8_4}" "$@" \
+        >"$dir/out" 2>"$dir/err" &
     pid=$!
     for _ in $(seq 100); do
         grep -q "ready on" "$dir/out" 2>/dev/null && return 0
@@ -58,3 +59,7 @@ printf "servo read+write, --spin 200:   "; "$bench" "$dir/vb.sock" servo 2000 0
 printf "protocol alone, --spin 200:     "; "$bench" "$dir/vb.sock" hello 5000
 stop_board
 printf "machine floor (socketpair):     "; "$bench" pingpong 5000
+# The 5i25's 7I76x2 has no ClockHigh logic (no PWM): only ClockLow edges run.
+BOARD=5i25 FW=7I76x2 start_board
+printf "5i25 7I76x2 simulation, idle:   "; "$bench" "$dir/vb.sock" speed 20
+stop_board

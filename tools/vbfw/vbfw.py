@@ -69,6 +69,11 @@ def make_bit(part: str, design: str, payload: bytes) -> bytes:
     )
 
 
+def uses_clock_high(desc: dict) -> bool:
+    """Only the PWMGen bank has logic on ClockHigh (hdl/hostmot2/README.md)."""
+    return any(m["name"] == "PWMGen" and int(m["instances"]) > 0 for m in desc["modules"])
+
+
 def header_text(desc: dict, crc: int, prefix: str) -> str:
     fw = desc["firmware"]["name"]
     board = desc["board"]
@@ -81,7 +86,7 @@ def header_text(desc: dict, crc: int, prefix: str) -> str:
         f"static const vb::FwInfo kFwInfo_{ident} = {{\n"
         f'    "{board["name"]}", "{fw}", "{board["fpga_part"]}",\n'
         f'    {int(desc["clocks"]["low_hz"])}u, {int(desc["clocks"]["high_hz"])}u,\n'
-        f'    {int(board["io_width"])}u, 0x{crc:08x}u,\n'
+        f'    {int(board["io_width"])}u, 0x{crc:08x}u, {"true" if uses_clock_high(desc) else "false"},\n'
         "};\n"
     )
 

@@ -18,6 +18,9 @@ struct FwInfo {
     uint32_t clock_high_hz;
     uint32_t io_width;
     uint32_t idrom_crc;     // CRC-32 of the IDROM words (fwimage.h)
+    // Some module has logic on ClockHigh (PWMGen).  When none has, the
+    // board skips the ClockHigh-only edges: nothing could see them.
+    bool uses_clock_high;
 };
 
 } // namespace vb
