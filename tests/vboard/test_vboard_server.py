@@ -195,6 +195,25 @@ def test_malformed_requests_get_errors_and_the_connection_goes_on(
     assert client.pin(3).ext == vboard.EXT_NONE
 
 
+def test_pipelined_requests_are_answered_in_order(client: VBoardClient) -> None:
+    s = _raw(client.path)
+    n = 3000
+    reqs = b"".join(
+        vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.READ, 0, 8, seq, 0) + struct.pack("<II", 0x100, 4)
+        for seq in range(1, n + 1)
+    )
+    # Send from a thread: the board's replies fill the socket while we send.
+    import threading
+
+    t = threading.Thread(target=s.sendall, args=(reqs,))
+    t.start()
+    for seq in range(1, n + 1):
+        rtype, status, rseq, data = _reply(s)
+        assert (rtype, status, rseq, data) == (vboard.READ, 0, seq, struct.pack("<I", 0x55AACAFE))
+    t.join()
+    s.close()
+
+
 def test_client_disconnect_mid_request(client: VBoardClient) -> None:
     s = _raw(client.path)
     s.sendall(vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.WRITE, 0, 100, 1, 0) + b"\0" * 10)

@@ -167,6 +167,11 @@ bool Server::on_readable(Conn &c)
         ssize_t n = ::recv(c.fd, buf, sizeof buf, 0);
         if (n > 0) {
             c.rx.insert(c.rx.end(), buf, buf + n);
+            // Serve what came before reading more: a client streaming
+            // requests cannot keep the board in this loop or grow rx
+            // without bound (the rest waits in the socket).
+            if (c.rx.size() >= kHdr + VB_MAX_PAYLOAD)
+                return process(c);
             continue;
         }
         if (n == 0)
