@@ -96,6 +96,25 @@ def test_freerun_advances_with_the_wall_clock(sockdir: Path) -> None:
         assert c.now() == t2
 
 
+def test_time_requests_switch_modes(client: VBoardClient) -> None:
+    client.freerun()
+    assert not client.hello().lockstep
+    t0 = client.now()
+    time.sleep(0.2)
+    t1 = client.now()
+    assert t1 > t0
+    # advance works while free-running too
+    assert client.advance(50_000) >= t1 + 50_000
+    client.lockstep()
+    h = client.hello()
+    assert h.lockstep
+    t2 = client.now()
+    time.sleep(0.1)
+    assert client.now() == t2
+    with pytest.raises(VBoardError, match="overflows"):
+        client.advance(2**64 - 1)
+
+
 def test_clients_at_once_and_one_after_another(svst: VBoardProcess) -> None:
     a, b = svst.client(), svst.client()
     a.write(0x1100, 0x1)  # DDR port 0 bit 0
