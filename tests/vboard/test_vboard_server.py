@@ -321,6 +321,13 @@ def test_spin_serves_like_the_default(sockdir: Path) -> None:
         assert p.stop() == 0
 
 
+def test_help_and_unknown_option() -> None:
+    r = subprocess.run([str(vboard.vboard_binary()), "--help"], capture_output=True, text=True, timeout=30)
+    assert r.returncode == 0 and r.stdout.startswith("usage: vboard --socket PATH --board NAME")
+    r = subprocess.run([str(vboard.vboard_binary()), "--bogus"], capture_output=True, text=True, timeout=30)
+    assert r.returncode == 2 and "unrecognized option '--bogus'" in r.stderr and "usage:" in r.stderr
+
+
 def test_list(sockdir: Path) -> None:
     r = subprocess.run([str(vboard.vboard_binary()), "--list"], capture_output=True, text=True, timeout=30)
     assert r.returncode == 0

@@ -34,7 +34,7 @@ void usage(FILE *f)
     std::fprintf(f,
                  "usage: vboard --socket PATH --board NAME [--firmware NAME] [--freerun]\n"
                  "              [--loop FROM:TO[:inv]]... [--loop-file FILE]\n"
-                 "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd] [--log]\n"
+                 "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd|.fst] [--log]\n"
                  "              [--spin USEC]\n"
                  "       vboard --list\n"
                  "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");
