@@ -321,6 +321,25 @@ def test_spin_serves_like_the_default(sockdir: Path) -> None:
         assert p.stop() == 0
 
 
+def test_the_c_client_talks_to_the_board(svst: VBoardProcess) -> None:
+    """bin/vboard-bench speaks through the project's C client (vbclient)."""
+    bench = vboard.build_dir() / "bin" / "vboard-bench"
+    if not bench.exists():
+        pytest.skip("vboard-bench not built (no vbclient)")
+    r = subprocess.run([str(bench), svst.socket_path, "servo", "20", "100000"], capture_output=True,
+                       text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert "per read+write (20 cycles, 100000 ns advance each)" in r.stdout
+    with svst.client() as c:
+        # 20 cycles of 100 us from the epoch the bench took: ~2 ms of board time.
+        assert 2_000_000 <= c.now() < 2_100_000
+        # Its watchdog pets (0xE00) never let the (disabled) watchdog bite.
+        assert c.read32(0x0D00) & 1 == 0
+    r = subprocess.run([str(bench), svst.socket_path, "speed", "0.1"], capture_output=True, text=True,
+                       timeout=60)
+    assert r.returncode == 0 and "M ClockLow cycles/s" in r.stdout, r.stderr
+
+
 def test_help_and_unknown_option() -> None:
     r = subprocess.run([str(vboard.vboard_binary()), "--help"], capture_output=True, text=True, timeout=30)
     assert r.returncode == 0 and r.stdout.startswith("usage: vboard --socket PATH --board NAME")
