@@ -19,6 +19,9 @@
 #ifdef HM2PINOUT_HAVE_PCI
 #include "source_pci.h"
 #endif
+#ifdef HM2PINOUT_HAVE_SIM
+#include "source_sim.h"
+#endif
 
 struct opts {
     const char *board;
@@ -38,6 +41,8 @@ static void usage(FILE *f)
             "                     or an IDROM image (1024 bytes)\n"
             "                     pci:[ADDR]: a Mesa PCI board via sysfs (first found,\n"
             "                     or e.g. pci:0000:01:00.0; -b is then ignored)\n"
+            "                     sim:SOCKET: a virtual board (bin/vboard --socket SOCKET;\n"
+            "                     -b is then ignored)\n"
             "  -b, --board NAME   board whose connectors to use (default 5i20); -b list\n"
             "  -n, --index N      board number in the HAL prefix (default 0)\n"
             "  -c, --config STR   hostmot2 config string (num_encoders=..., ...)\n"
@@ -195,9 +200,16 @@ int main(int argc, char **argv)
     }
     const char *path = o.source;
     hm2_llio_t *llio = NULL;
-    void *pci = NULL;
+    void *pci = NULL, *sim = NULL;
     struct hm2_image_llio *im = NULL;
     int rc = 1;
+#ifdef HM2PINOUT_HAVE_SIM
+    if (strncmp(path, "sim:", 4) == 0) {
+        if (hm2pinout_open_sim(path + 4, o.index, &llio, &sim))
+            return 1;
+        goto probe;
+    }
+#endif
 #ifdef HM2PINOUT_HAVE_PCI
     if (strncmp(path, "pci:", 4) == 0) {
         if (hm2pinout_open_pci(path + 4, o.index, &llio, &pci))
@@ -208,7 +220,7 @@ int main(int argc, char **argv)
     if (strncmp(path, "image:", 6) == 0) {
         path += 6;
     } else if (strchr(path, ':') && strncmp(path, "/", 1) != 0) {
-        fprintf(stderr, "hm2pinout: unknown source '%s' (image:FILE, FILE or pci:[ADDR])\n", o.source);
+        fprintf(stderr, "hm2pinout: unknown source '%s' (image:FILE, FILE, pci:[ADDR] or sim:SOCKET)\n", o.source);
         return 2;
     }
     im = malloc(sizeof(*im));
@@ -219,7 +231,7 @@ int main(int argc, char **argv)
     if (open_image(path, b, o.index, im))
         goto out;
     llio = &im->llio;
-#ifdef HM2PINOUT_HAVE_PCI
+#if defined(HM2PINOUT_HAVE_PCI) || defined(HM2PINOUT_HAVE_SIM)
 probe:;
 #endif
     struct sink s = {o.no_prefix, 1, o.pin_file && !o.verbose};
@@ -227,7 +239,7 @@ probe:;
     int err;
     hostmot2_t *hm2 = hm2_probe(llio, o.config, &hopts, out_sink, &s, &err);
     if (!hm2) {
-        if (pci)
+        if (pci || sim)
             fprintf(stderr, "hm2pinout: %s: no usable HostMot2 firmware on %s (%s)\n", path,
                     llio->name, strerror(-err));
         else
@@ -247,6 +259,9 @@ out:
     free(im);
 #ifdef HM2PINOUT_HAVE_PCI
     hm2pinout_close_pci(pci);
+#endif
+#ifdef HM2PINOUT_HAVE_SIM
+    hm2pinout_close_sim(sim);
 #endif
     return rc;
 }

@@ -27,6 +27,8 @@ typedef struct vbc {
     char path[108];          /* sun_path */
     uint32_t seq;
     int timeout_ms;
+    int spin_us;             /* busy-poll this long for a reply before
+                                sleeping (0 = never spin) */
     /* Reply payload of the last call (grown as needed, owned here). */
     uint8_t *rx;
     size_t rx_len, rx_cap;
