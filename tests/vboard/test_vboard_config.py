@@ -100,15 +100,21 @@ def _image(board: str = "5i20", fw: str = "SVST8_4", crc: int | None = None) -> 
 def test_bad_images_leave_the_board_blank(blank: VBoardClient, image: object, text: str) -> None:
     data = image() if callable(image) else image
     assert isinstance(data, bytes)
-    blank.program(_payload("5i20", "SVST8_4"))  # a configured board is cleared by any PROGRAM
     with pytest.raises(VBoardError) as e:
         blank.program(data)
     assert e.value.status == -22
     assert text in e.value.message
     assert "5i20: configuration failed, board stays blank" in e.value.message
     _assert_blank(blank)
-    # ... and a good image still works afterwards.
-    assert blank.program(_payload("5i20", "SVST8_4")).done == 1
+    # A configured board keeps its firmware (the bad request is not applied).
+    assert blank.program(_payload("5i20", "SV12")).done == 1
+    blank.write(0x1100, 0x3)
+    with pytest.raises(VBoardError) as e:
+        blank.program(data)
+    assert "5i20: configuration failed, board keeps firmware SV12" in e.value.message
+    assert blank.hello().firmware == "SV12"
+    assert blank.config(vboard.CONFIG_STATUS).firmware == "SV12"
+    assert blank.read32(0x1100) == 0x3 and blank.pin(1).oe == 1
 
 
 def test_config_status_and_reset_take_no_bitstream(blank: VBoardClient) -> None:

@@ -123,9 +123,10 @@ int LocalBusBoard::config(uint32_t op, const uint8_t *bits, size_t len, vb_confi
         unconfigure();
         break;
     case VB_CONFIG_PROGRAM: {
-        // A real FPGA starts configuration by clearing itself: whatever
-        // happens next, the old firmware is gone.
-        unconfigure();
+        // The image is checked before anything changes: a bad request is
+        // not applied (the protocol's error rule), so a configured board
+        // keeps its firmware and a blank one stays blank.  (The drivers
+        // reset the board before programming, as on real hardware.)
         FwImage img;
         int rc = parse_fw_image(bits, len, img, err);
         if (rc == 0 && img.board != board_) {
@@ -148,8 +149,10 @@ int LocalBusBoard::config(uint32_t op, const uint8_t *bits, size_t len, vb_confi
             rc = -EINVAL;
         }
         if (rc < 0) {
-            fill_status(st, "");
-            err = board_ + ": configuration failed, board stays blank: " + err;
+            fill_status(st, firmware());
+            err = board_ + ": configuration failed, board " +
+                  (configured() ? "keeps firmware " + firmware() : std::string("stays blank")) +
+                  ": " + err;
             return rc;
         }
         start(*e);
