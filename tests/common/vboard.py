@@ -24,6 +24,7 @@ import signal
 import socket
 import struct
 import subprocess
+import tempfile
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -329,11 +330,14 @@ class VBoardProcess:
         self.cmd = cmd
         # cwd: where relative paths (dumps) land; default: the socket's directory.
         workdir = cwd if cwd is not None else os.path.dirname(os.path.abspath(self.socket_path))
+        # stderr goes to a file, not a pipe: with --log the board writes a
+        # line per request and would block on a full pipe nobody reads.
+        self._err = tempfile.TemporaryFile(mode="w+")
+        self.stderr_text = ""
         self.proc = subprocess.Popen(
-            cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=workdir
+            cmd, stdout=subprocess.PIPE, stderr=self._err, text=True, cwd=workdir
         )
         self.ready_line = self._wait_ready(timeout)
-        self.stderr_text = ""
 
     def _wait_ready(self, timeout: float) -> str:
         assert self.proc.stdout is not None
@@ -348,9 +352,16 @@ class VBoardProcess:
                     break
             elif self.proc.poll() is not None:
                 break
-        err = self.proc.stderr.read() if self.proc.stderr and self.proc.poll() is not None else ""
         self.kill()
-        raise RuntimeError(f"vboard did not become ready ({' '.join(self.cmd)}): {err.strip()}")
+        raise RuntimeError(f"vboard did not become ready ({' '.join(self.cmd)}): {self.stderr_text.strip()}")
+
+    def stderr_so_far(self) -> str:
+        """What the board wrote to stderr until now."""
+        self._err.flush()
+        self._err.seek(0)
+        text = self._err.read()
+        self._err.seek(0, os.SEEK_END)
+        return text
 
     def client(self, timeout: float = 10.0) -> VBoardClient:
         return VBoardClient(self.socket_path, timeout)
@@ -360,17 +371,18 @@ class VBoardProcess:
         if self.proc.poll() is None:
             self.proc.send_signal(signal.SIGTERM)
         try:
-            _out, err = self.proc.communicate(timeout=timeout)
+            self.proc.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
             self.kill()
             raise
-        self.stderr_text = err or ""
+        self.stderr_text = self.stderr_so_far()
         return self.proc.returncode
 
     def kill(self) -> None:
         if self.proc.poll() is None:
             self.proc.kill()
         self.proc.communicate()
+        self.stderr_text = self.stderr_so_far()
 
     def __enter__(self) -> VBoardProcess:
         return self
