@@ -21,7 +21,7 @@ std::string pin_range_error(const char *what, uint32_t pin, uint32_t n)
 
 PinBank::PinBank(uint32_t n)
     : n_(n), fout_((n + 31) / 32, 0), foe_((n + 31) / 32, 0), in_((n + 31) / 32, 0),
-      ext_(n, kNone), srcval_(n, 0), st_(n)
+      scratch_((n + 31) / 32, 0), ext_(n, kNone), srcval_(n, 0), st_(n)
 {
     // Undriven pins read 1 (pull-ups).
     for (uint32_t p = 0; p < n_; p++)
@@ -87,7 +87,7 @@ void PinBank::refresh(uint32_t pin, uint64_t now, int depth)
 
 void PinBank::apply_fpga(const uint32_t *out, const uint32_t *oe, uint64_t now)
 {
-    std::vector<uint32_t> changed(in_.size());
+    std::vector<uint32_t> &changed = scratch_; // no allocation per edge
     for (uint32_t w = 0; w < in_.size(); w++) {
         changed[w] = (out[w] ^ fout_[w]) | (oe[w] ^ foe_[w]);
         fout_[w] = out[w];

@@ -117,7 +117,7 @@ class PinBank {
     }
 
     uint32_t n_;
-    std::vector<uint32_t> fout_, foe_, in_;
+    std::vector<uint32_t> fout_, foe_, in_, scratch_;
     std::vector<uint8_t> ext_;       // enum Ext
     std::vector<uint8_t> srcval_;    // level from quad source (pins with ext kQuad)
     std::vector<Stats> st_;
