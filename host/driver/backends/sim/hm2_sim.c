@@ -40,6 +40,9 @@ static char *board[NB];
 RTAPI_MP_ARRAY_STRING(board, NB, "expected board of each socket (5i20, ...; optional)");
 static char *config[NB];
 RTAPI_MP_ARRAY_STRING(config, NB, "config string for the boards (see hostmot2(9) manpage)");
+static int host_time = 1;
+RTAPI_MP_INT(host_time, "1: requests carry rtapi_get_time() (board in lockstep with HAL); 0: they "
+                        "carry 0 and never advance the board's clock");
 static int spin_us = 0;
 RTAPI_MP_INT(spin_us, "busy-wait up to this many us for each board reply before sleeping");
 
@@ -68,6 +71,11 @@ static void hs_log(void *ctx, int level, const char *line)
 static int64_t hs_now(void)
 {
     return (int64_t)rtapi_get_time();
+}
+
+static int64_t hs_no_time(void)
+{
+    return 0;
 }
 
 static void cleanup(void)
@@ -102,7 +110,8 @@ static int setup_one(int i)
     struct hs_slot *s = &slots[i];
     /* the index depends on the board type, which only HELLO tells: set up
      * with index 0, then rename */
-    int r = hm2_sim_setup(&s->board, sockets[i], board[i], 0, hs_now, hs_log, NULL);
+    int r = hm2_sim_setup(&s->board, sockets[i], board[i], 0, host_time ? hs_now : hs_no_time,
+                          hs_log, NULL);
     if (r)
         return r;
     s->set_up = 1;
