@@ -57,6 +57,9 @@ stop_board
 start_board --spin 200
 printf "servo read+write, --spin 200:   "; "$bench" "$dir/vb.sock" servo 2000 0
 printf "protocol alone, --spin 200:     "; "$bench" "$dir/vb.sock" hello 5000
+# ... and the client busy-polls for its replies too (vbclient spin_us).
+printf "servo r+w, both sides spin:     "; VBBENCH_SPIN_US=200 "$bench" "$dir/vb.sock" servo 2000 0
+printf "protocol alone, both spin:      "; VBBENCH_SPIN_US=200 "$bench" "$dir/vb.sock" hello 5000
 stop_board
 printf "machine floor (socketpair):     "; "$bench" pingpong 5000
 # The 5i25's 7I76x2 has no ClockHigh logic (no PWM): only ClockLow edges run.

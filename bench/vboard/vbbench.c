@@ -231,14 +231,10 @@ int main(int argc, char **argv)
         return 1;
     }
     c.timeout_ms = 600000;
-    /* Give the client its request buffer before a payload-less request
-     * (vbclient at 2e59808 dereferences a NULL buffer otherwise). */
-    vbc_req_start(&c);
-    if (vbc_req_put(&c, "", 1) < 0) {
-        fprintf(stderr, "vboard-bench: %s\n", c.err);
-        vbc_close(&c);
-        return 1;
-    }
+    /* VBBENCH_SPIN_US: the client busy-polls for its reply that long
+     * before sleeping (vbclient's spin_us), like hm2_sim's spin_us=. */
+    const char *spin = getenv("VBBENCH_SPIN_US");
+    c.spin_us = spin ? atoi(spin) : 0;
     int rc;
     if (strcmp(argv[2], "speed") == 0)
         rc = bench_speed(&c, atof(argv[3]), argc > 4 && strcmp(argv[4], "steps") == 0);
