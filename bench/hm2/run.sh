@@ -7,7 +7,8 @@
 #      driver's whole per-cycle I/O: one READ and one WRITE round trip),
 #      median of the sampled periods, with hm2_sim host_time=0 (transport
 #      only: the board's clocks stand still), also with hm2_sim spin_us=200
-#      and vboard --spin 200 (both sides busy-poll), and against a
+#      and vboard --spin 200 (both sides busy-poll), with async_writes=1 (the
+#      write's reply is read with the next request), and against a
 #      free-running board (each request waits for the simulation).
 #      Anchors: goal <= 20 us; hm2_eth ~100 us waiting for reads; SoC 59 us.
 #   2. simulated clock (halrun -S, lockstep): wall time per 1 ms servo cycle
@@ -90,7 +91,7 @@ pairs = [(vals[i], vals[i + 1]) for i in range(0, len(vals) - 1, 2) if vals[i] >
 us = sorted((r + w) / hz * 1e6 for r, w in pairs)
 rd = statistics.median(r for r, _ in pairs) / hz * 1e6
 wr = statistics.median(w for _, w in pairs) / hz * 1e6
-print(f"{sys.argv[3]:<34} read+write median {statistics.median(us):6.1f} us "
+print(f"{sys.argv[3]:<36} read+write median {statistics.median(us):6.1f} us "
       f"(read {rd:.1f}, write {wr:.1f}; p90 {us[int(len(us) * 0.9)]:.1f}; {len(us)} samples)"
       f"   goal <= 20 us, hm2_eth ~100 us, SoC 59 us")
 PY
@@ -104,8 +105,12 @@ echo "virtual 5i20 SVST8_4 through hostmot2 + hm2_sim; $(nproc) CPUs, TSC $(awk 
 start_board
 wall_run "wall clock, 1 ms thread:" "host_time=0"
 stop_board
+start_board
+wall_run "wall clock, async_writes=1:" "host_time=0 async_writes=1"
+stop_board
 start_board --spin 200
 wall_run "wall clock, both sides spin 200 us:" "host_time=0 spin_us=200"
+wall_run "spin 200 us + async_writes=1:" "host_time=0 spin_us=200 async_writes=1"
 stop_board
 start_board --freerun
 wall_run "wall clock, board free-running:" ""
@@ -128,5 +133,5 @@ HAL_INSTANCE=hm2sim$$ "$build/bin/halrun" -S -f "$dir/sim.hal" > "$dir/sim.out" 
 stop_board
 awk -v a="$(cat "$dir/t0")" -v b="$(cat "$dir/t1")" 'BEGIN {
     w = b - a; clk = 33333333 * 0.100
-    printf "%-34s %6.1f ms wall per 1 ms servo cycle; %.2f M ClockLow/s = %.1f%% of real time   anchor: real time 33.333 M/s\n",
+    printf "%-36s %6.1f ms wall per 1 ms servo cycle; %.2f M ClockLow/s = %.1f%% of real time   anchor: real time 33.333 M/s\n",
         "simulated clock (lockstep):", w / 100 * 1000, clk / w / 1e6, clk / w / 33333333 * 100 }'

@@ -293,6 +293,45 @@ static void test_configuration(void)
     fake_board_stop(&fb);
 }
 
+/* writes sent without waiting: in order with later requests, their board
+ * errors reported by the next request, one round trip per period */
+static void test_async_writes(void)
+{
+    struct fake_board fb;
+    struct hm2_sim_board sb;
+    struct logbuf log;
+    CHECK_EQ_INT(setup(&fb, &sb, &log), 0);
+    hm2_llio_t *l = &sb.llio;
+    sb.async_writes = 1;
+    uint32_t v = 0xCAFEF00D, r = 0;
+    CHECK_EQ_INT(l->queue_write(l, 0x3000, &v, 4), 0);
+    CHECK_EQ_INT(l->send_queued_writes(l), 0);
+    CHECK_EQ_INT(sb.vbc.posted, 1);
+    CHECK_EQ_INT(l->queue_read(l, 0x3000, &r, 4), 0);
+    CHECK_EQ_INT(l->send_queued_reads(l), 0);
+    CHECK_EQ_INT(r, 0xCAFEF00D);
+    CHECK_EQ_INT(sb.vbc.posted, 0);
+    /* a posted write the board refuses: the next request reports it */
+    uint32_t two[2] = {1, 2};
+    CHECK_EQ_INT(l->queue_write(l, 0xFFFC, two, 8), 0);
+    CHECK_EQ_INT(l->send_queued_writes(l), 0);
+    int req = fb.requests;
+    CHECK_EQ_INT(l->read(l, 0x3000, &r, 4), -EINVAL);
+    CHECK(strstr(log.last, "outside the register window") != NULL);
+    CHECK(strstr(log.last, "reply to an earlier request") != NULL);
+    CHECK_EQ_INT(fb.requests, req + 1); /* only the write reached the board */
+    CHECK_EQ_INT(l->read(l, 0x3000, &r, 4), 0);
+    /* the board dies with a write outstanding: the next call says so */
+    CHECK_EQ_INT(l->queue_write(l, 0x3000, &v, 4), 0);
+    fb.fault = FAKE_CLOSE;
+    fb.fault_at = fb.requests + 1;
+    CHECK_EQ_INT(l->send_queued_writes(l), 0);
+    CHECK_EQ_INT(l->read(l, 0x3000, &r, 4), -ENODEV);
+    CHECK(strstr(log.last, "the board is gone") != NULL);
+    hm2_sim_teardown(&sb);
+    fake_board_stop(&fb);
+}
+
 int main(void)
 {
     RUN(test_hello_first);
@@ -305,5 +344,6 @@ int main(void)
     RUN(test_timeout_and_bad_reply);
     RUN(test_identity_checks);
     RUN(test_configuration);
+    RUN(test_async_writes);
     return check_summary();
 }

@@ -43,6 +43,9 @@ RTAPI_MP_ARRAY_STRING(config, NB, "config string for the boards (see hostmot2(9)
 static int host_time = 1;
 RTAPI_MP_INT(host_time, "1: requests carry rtapi_get_time() (board in lockstep with HAL); 0: they "
                         "carry 0 and never advance the board's clock");
+static int async_writes = 0;
+RTAPI_MP_INT(async_writes, "1: send each period's writes without waiting for the board's reply "
+                           "(checked with the next request; one round trip per period)");
 static int spin_us = 0;
 RTAPI_MP_INT(spin_us, "busy-wait up to this many us for each board reply before sleeping");
 
@@ -116,6 +119,7 @@ static int setup_one(int i)
         return r;
     s->set_up = 1;
     s->board.vbc.spin_us = spin_us;
+    s->board.async_writes = async_writes != 0;
     hm2_board_fill_llio(s->board.info, type_index(i, s->board.hello.board), &s->board.llio);
     s->board.llio.comp_id = comp_id;
     r = hm2_register(&s->board.llio, config[i]);

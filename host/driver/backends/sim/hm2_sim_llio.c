@@ -230,7 +230,15 @@ static int sim_send_queued_writes(hm2_llio_t *llio)
     if (sb->dead)
         return -ENODEV;
     pthread_mutex_lock(&sb->lock);
-    int r = vbc_call(&sb->vbc, VB_WRITE, (uint64_t)host_time(sb), q->wbuf, len);
+    int r;
+    if (sb->async_writes) {
+        vbc_req_start(&sb->vbc);
+        r = vbc_req_put(&sb->vbc, q->wbuf, len);
+        if (!r)
+            r = vbc_post(&sb->vbc, VB_WRITE, (uint64_t)host_time(sb));
+    } else {
+        r = vbc_call(&sb->vbc, VB_WRITE, (uint64_t)host_time(sb), q->wbuf, len);
+    }
     sb->round_trips++;
     pthread_mutex_unlock(&sb->lock);
     if (r) {

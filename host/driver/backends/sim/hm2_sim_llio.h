@@ -57,6 +57,8 @@ struct hm2_sim_board {
     hm2_log_fn log;
     void *log_ctx;
     int dead;                  /* transport failed: fail fast */
+    int async_writes;          /* send queued writes without waiting for the
+                                  reply (checked with the next request) */
     /* statistics (bench, tests) */
     uint64_t round_trips;
 };

@@ -39,6 +39,7 @@ static int grow(uint8_t **buf, size_t *cap, size_t need)
 static int fail(vbc_t *c, int rc, const char *what)
 {
     snprintf(c->err, sizeof c->err, "virtual board %s: %s", c->path, what);
+    c->posted = 0;
     if (c->fd >= 0) {
         close(c->fd);
         c->fd = -1;
@@ -66,6 +67,7 @@ int vbc_reconnect(vbc_t *c)
         close(c->fd);
         c->fd = -1;
     }
+    c->posted = 0;
     int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
     if (fd < 0) {
         int e = errno;
@@ -93,6 +95,7 @@ void vbc_close(vbc_t *c)
     if (c->fd >= 0)
         close(c->fd);
     c->fd = -1;
+    c->posted = 0;
     free(c->rx);
     free(c->tx);
     c->rx = c->tx = NULL;
@@ -193,7 +196,8 @@ static int recv_all(vbc_t *c, uint8_t *p, size_t n, int64_t deadline)
     return 0;
 }
 
-int vbc_send(vbc_t *c, uint16_t type, uint64_t host_time_ns)
+/* Frame and send the assembled request; its sequence number in *seq. */
+static int send_request(vbc_t *c, uint16_t type, uint64_t host_time_ns, uint32_t *seq)
 {
     if (c->fd < 0) {
         if (!c->err[0])
@@ -217,13 +221,19 @@ int vbc_send(vbc_t *c, uint16_t type, uint64_t host_time_ns)
     memcpy(c->tx, &h, sizeof h);
     int rc = send_all(c, c->tx, c->tx_len);
     c->tx_len = sizeof h;
-    if (rc < 0)
-        return rc;
+    *seq = h.seq;
+    return rc;
+}
+
+/* Receive the reply to request (type, seq) into c->rx. */
+static int recv_reply(vbc_t *c, uint16_t type, uint32_t seq)
+{
     struct vb_header r;
     int64_t deadline = now_ms() + c->timeout_ms;
-    if ((rc = recv_all(c, (uint8_t *)&r, sizeof r, deadline)) < 0)
+    int rc = recv_all(c, (uint8_t *)&r, sizeof r, deadline);
+    if (rc < 0)
         return rc;
-    if (r.magic != VB_REP_MAGIC || r.seq != h.seq || r.type != type || r.length > VB_MAX_PAYLOAD)
+    if (r.magic != VB_REP_MAGIC || r.seq != seq || r.type != type || r.length > VB_MAX_PAYLOAD)
         return fail(c, -EPROTO, "reply does not match the request (bad magic, seq or type)");
     if (grow(&c->rx, &c->rx_cap, (size_t)r.length + 1) < 0)
         return fail(c, -ENOMEM, "out of memory for the reply");
@@ -237,6 +247,51 @@ int vbc_send(vbc_t *c, uint16_t type, uint64_t host_time_ns)
         return r.status;
     }
     return 0;
+}
+
+int vbc_collect(vbc_t *c)
+{
+    if (!c->posted)
+        return 0;
+    c->posted = 0;
+    int rc = recv_reply(c, c->posted_type, c->posted_seq);
+    if (rc < 0 && c->fd >= 0) {
+        /* a board-side error of the posted request: say which request */
+        static const char note[] = " (reply to an earlier request sent without waiting)";
+        size_t n = strlen(c->err);
+        if (n + sizeof note <= sizeof c->err)
+            memcpy(c->err + n, note, sizeof note);
+    }
+    return rc;
+}
+
+int vbc_post(vbc_t *c, uint16_t type, uint64_t host_time_ns)
+{
+    int rc = vbc_collect(c);
+    if (rc < 0) {
+        c->tx_len = sizeof(struct vb_header);
+        return rc;
+    }
+    uint32_t seq;
+    if ((rc = send_request(c, type, host_time_ns, &seq)) < 0)
+        return rc;
+    c->posted = 1;
+    c->posted_type = type;
+    c->posted_seq = seq;
+    return 0;
+}
+
+int vbc_send(vbc_t *c, uint16_t type, uint64_t host_time_ns)
+{
+    int rc = vbc_collect(c);
+    if (rc < 0) {
+        c->tx_len = sizeof(struct vb_header);
+        return rc;
+    }
+    uint32_t seq;
+    if ((rc = send_request(c, type, host_time_ns, &seq)) < 0)
+        return rc;
+    return recv_reply(c, type, seq);
 }
 
 int vbc_call(vbc_t *c, uint16_t type, uint64_t host_time_ns, const void *payload, size_t n)

@@ -36,6 +36,10 @@ typedef struct vbc {
     uint8_t *tx;
     size_t tx_len, tx_cap;
     uint64_t board_time_ns;  /* from the last reply */
+    /* A request sent by vbc_post() whose reply is still to be read. */
+    int posted;
+    uint16_t posted_type;
+    uint32_t posted_seq;
     char err[256];           /* last error text */
 } vbc_t;
 
@@ -51,6 +55,17 @@ int vbc_reconnect(vbc_t *c);
 void vbc_req_start(vbc_t *c);
 int vbc_req_put(vbc_t *c, const void *data, size_t n);
 int vbc_send(vbc_t *c, uint16_t type, uint64_t host_time_ns);
+
+/* Send the assembled request without waiting for its reply (a write whose
+ * completion the caller does not need, as hm2_eth does not wait for write
+ * acknowledgements).  At most one request is outstanding: the reply is read
+ * and checked by the next vbc_send()/vbc_post()/vbc_collect(), which
+ * returns its error (board -errno, with "(reply to an earlier request
+ * ...)" in c->err) instead of sending anything.  The board serves one
+ * connection's requests in order, so a later request sees the effect. */
+int vbc_post(vbc_t *c, uint16_t type, uint64_t host_time_ns);
+/* Read and check the reply of a posted request, if any.  0 or -errno. */
+int vbc_collect(vbc_t *c);
 
 /* One-shot helpers. */
 int vbc_call(vbc_t *c, uint16_t type, uint64_t host_time_ns, const void *payload, size_t n);
