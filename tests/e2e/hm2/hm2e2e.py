@@ -81,9 +81,13 @@ def halrun(
     env.pop("HM2_FIRMWARE_PATH", None)  # firmware from $HM_BUILD/lib/firmware
     env.update(extra_env or {})
     opts = ["-S"] if simclock else []
-    return subprocess.run(
+    r = subprocess.run(
         [str(HALRUN), *opts, "-f", str(f)], capture_output=True, text=True, timeout=timeout, env=env, cwd=tmp
     )
+    out = r.stdout + r.stderr
+    for bad in ("AddressSanitizer", "LeakSanitizer", "runtime error:"):
+        assert bad not in out, f"sanitizer report in the HAL session:\n{out}"
+    return r
 
 
 def values(out: str) -> dict[str, list[str]]:

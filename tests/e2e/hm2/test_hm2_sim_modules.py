@@ -197,9 +197,11 @@ def test_encoder_index(tmp_path: Path, board: Path) -> None:
         (2, 0.3, 0.0, 0.3),
         (2, -0.3, 0.3, 0.0),
         (3, 0.4, 0.4, None),     # PDM: density on Out0
+        (4, 0.35, None, 0.35),   # Dir/PWM: Out0 = direction, Out1 = PWM
+        (4, -0.35, None, 0.35),
     ],
 )
-def test_pwmgen_duty(tmp_path: Path, board: Path, otype: int, value: float, duty0: float,
+def test_pwmgen_duty(tmp_path: Path, board: Path, otype: int, value: float, duty0: float | None,
                      duty1: float | None) -> None:
     p = f"{PFX}.pwmgen"
     s = load(board)
@@ -213,12 +215,12 @@ def test_pwmgen_duty(tmp_path: Path, board: Path, otype: int, value: float, duty
     out = run_ok(tmp_path, s)
     pins = probed(out, "p")
     duty = [pn["high_total_ns"] / pn["total_ns"] for pn in pins]
-    assert duty[0] == pytest.approx(duty0, abs=0.01)
-    if duty1 is not None:
-        assert duty[1] == pytest.approx(duty1, abs=0.01)
-    else:  # direction output: static, high for negative values
-        assert pins[1]["rising"] + pins[1]["falling"] == 0
-        assert pins[1]["level"] == (1 if value < 0 else 0)
+    for i, want in ((0, duty0), (1, duty1)):
+        if want is not None:
+            assert duty[i] == pytest.approx(want, abs=0.01)
+        else:  # direction output: static, high for negative values
+            assert pins[i]["rising"] + pins[i]["falling"] == 0
+            assert pins[i]["level"] == (1 if value < 0 else 0)
     if otype == 1:
         assert pins[0]["period_ns"] == pytest.approx(50_000, rel=0.01)  # 20 kHz
     assert (pins[2]["oe"], pins[2]["level"]) == (1, 0)  # /enable driven low while enabled
