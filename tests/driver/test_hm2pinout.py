@@ -167,6 +167,7 @@ def test_bad_input(tmp_path: Path, img5i20: Path) -> None:
     assert r.returncode == 1
     assert "config.num_encoders=9, but only 8 are available, not loading driver" in r.stderr
     assert run("-b", "9z99", str(img5i20)).returncode == 2
-    assert run("sim:/tmp/x").returncode == 2
+    assert run("usb:/tmp/x").returncode == 2  # unknown source (sim: is a source now)
+    assert run("sim:/tmp/no-such-board.sock").returncode == 1
     assert run().returncode == 2
     assert run(str(tmp_path / "missing")).returncode == 1
