@@ -46,11 +46,13 @@ PWM0_OUT0, PWM0_OUT1, PWM0_NENA = 7, 9, 11
 SG0_STEP, SG0_DIR = 48, 49
 
 
-def load(sock: Path, config: str = SEED_CONFIG, period_ns: int = 1_000_000, board: str = "5i20") -> str:
+def load(
+    sock: Path, config: str = SEED_CONFIG, period_ns: int = 1_000_000, board: str = "5i20", extra: str = ""
+) -> str:
     """HAL lines: hostmot2 + hm2_sim on sock, a servo thread with read/write."""
     return (
         "loadrt hostmot2\n"
-        f'loadrt hm2_sim socket={sock} board={board} config="{config}"\n'
+        f'loadrt hm2_sim socket={sock} board={board} config="{config}" {extra}\n'
         f"loadrt threads name1=servo period1={period_ns}\n"
         f"addf {PFX}.read servo\n"
         f"addf {PFX}.write servo\n"

@@ -178,3 +178,50 @@ def test_bad_module_arguments(tmp_path: Path, blank: vboard.VBoardProcess) -> No
     assert "cannot connect" in r.stdout + r.stderr and "is bin/vboard running?" in r.stdout + r.stderr
     r = halrun(tmp_path, "loadrt hostmot2\nloadrt hm2_sim\n")
     assert r.returncode != 0 and "no board given" in r.stdout + r.stderr
+
+
+def test_two_boards(tmp_path: Path) -> None:
+    """socket=a,b config="...,...": two boards, hm2_5i20.0 and hm2_5i20.1, each
+    with its own config string, as hm2_pci numbers boards of one type."""
+    with vboard.VBoardProcess(tmp_path / "a.sock", "5i20") as a, vboard.VBoardProcess(
+        tmp_path / "b.sock", "5i20", "SV12"
+    ) as b:
+        cfg0 = "firmware=hm2/5i20/SVST8_4.BIT num_encoders=1 num_pwmgens=0 num_stepgens=2"
+        cfg1 = "num_encoders=3 num_pwmgens=2"
+        s = (
+            "loadrt hostmot2\n"
+            f'loadrt hm2_sim socket={a.socket_path},{b.socket_path} board=5i20,5i20 config="{cfg0},{cfg1}"\n'
+            "loadrt threads name1=servo period1=1000000\n"
+            "addf hm2_5i20.0.read servo\naddf hm2_5i20.1.read servo\n"
+            "addf hm2_5i20.0.write servo\naddf hm2_5i20.1.write servo\n"
+            "simrun 2ms\n"
+            "show pin hm2_5i20.0.stepgen\nshow pin hm2_5i20.1.encoder\n"
+        )
+        r = halrun(tmp_path, s)
+        out = r.stdout + r.stderr
+        assert r.returncode == 0, out
+        assert f"hm2_5i20.0: initialized virtual AnyIO board at {a.socket_path} (SVST8_4)" in out
+        assert f"hm2_5i20.1: initialized virtual AnyIO board at {b.socket_path} (SV12)" in out
+        assert "hm2_5i20.0.stepgen.01.position-cmd" in out and "hm2_5i20.0.stepgen.02" not in out
+        assert "hm2_5i20.1.encoder.02.count" in out and "hm2_5i20.1.encoder.03" not in out
+        assert hello(Path(a.socket_path)).firmware == "SVST8_4"
+
+
+def test_async_writes_real_board(tmp_path: Path) -> None:
+    """async_writes=1 against the real board: the same steps come out."""
+    with vboard.VBoardProcess(tmp_path / "b.sock", "5i20", "SVST8_4") as vb:
+        sock = Path(vb.socket_path)
+        sg = f"{PFX}.stepgen.00"
+        s = load(sock, extra="async_writes=1")
+        for k, val in [("steplen", 5000), ("stepspace", 5000), ("dirsetup", 20000), ("dirhold", 20000),
+                       ("position-scale", 1000), ("maxvel", 40), ("maxaccel", 2000), ("enable", 1),
+                       ("position-cmd", 0.05)]:
+            s += f"setp {sg}.{k} {val}\n"
+        s += "simrun 30ms\n"
+        s += f"getp {sg}.position-fb\n"
+        r = halrun(tmp_path, s)
+        out = r.stdout + r.stderr
+        assert r.returncode == 0 and "failed" not in out, out
+        fb = [float(x) for x in r.stdout.split() if re.fullmatch(r"-?\d+\.\d+(e-?\d+)?", x)]
+        assert fb and abs(fb[-1] - 0.05) < 0.0011, out
+    assert vb.proc.returncode == 0
