@@ -109,6 +109,11 @@ static void serve(struct fake_board *fb, int fd)
 {
     for (;;) {
         struct vb_header h;
+        if (fb->fault == FAKE_STALL && fb->fault_at && fb->requests + 1 >= fb->fault_at) {
+            while (!fb->stall_release)
+                usleep(1000);
+            return;
+        }
         if (read_full(fd, &h, sizeof(h)))
             return;
         uint8_t *p = malloc(h.length + 16u);

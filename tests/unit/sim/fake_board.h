@@ -14,6 +14,7 @@ enum fake_fault {
     FAKE_CLOSE,      /* close the connection instead of answering */
     FAKE_SILENT,     /* read the request, never answer */
     FAKE_BAD_SEQ,    /* answer with a wrong sequence number */
+    FAKE_STALL,      /* stop reading the socket until stall_release is set */
 };
 
 struct fake_board {
@@ -26,6 +27,7 @@ struct fake_board {
     /* behaviour: fault applies from request number fault_at on (1-based) */
     enum fake_fault fault;
     int fault_at;
+    volatile int stall_release;
     /* observations */
     int requests;
     int reads, writes, configs;

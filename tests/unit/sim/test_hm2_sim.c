@@ -239,6 +239,34 @@ static void test_timeout_and_bad_reply(void)
     fake_board_stop(&fb);
 }
 
+/* a board that stops reading: a big request cannot block the caller past
+ * the timeout */
+static void test_send_timeout(void)
+{
+    struct fake_board fb;
+    CHECK(fake_board_start(&fb, "5i20", VB_BUS_LOCAL, VB_STATE_CONFIGURED) == 0);
+    vbc_t c;
+    CHECK_EQ_INT(vbc_open(&c, fb.path), 0);
+    c.timeout_ms = 200;
+    fb.fault = FAKE_STALL;
+    fb.fault_at = 1;
+    size_t n = 8u << 20;
+    uint8_t *big = calloc(1, n);
+    CHECK(big != NULL);
+    vbc_req_start(&c);
+    CHECK_EQ_INT(vbc_req_put(&c, big, n), 0);
+    double t0 = now_s();
+    CHECK_EQ_INT(vbc_send(&c, VB_CONFIG, 0), -ETIMEDOUT);
+    double dt = now_s() - t0;
+    CHECK(dt >= 0.19 && dt < 2.0);
+    CHECK(strstr(c.err, "send timeout") != NULL);
+    CHECK_EQ_INT(c.fd, -1);
+    free(big);
+    vbc_close(&c);
+    fb.stall_release = 1;
+    fake_board_stop(&fb);
+}
+
 static void test_identity_checks(void)
 {
     struct fake_board fb;
@@ -313,9 +341,9 @@ static void test_async_writes(void)
     CHECK_EQ_INT(sb.vbc.posted, 0);
     /* a posted write the board refuses: the next request reports it */
     uint32_t two[2] = {1, 2};
+    int req = fb.requests; /* before the post: the board may serve it at once */
     CHECK_EQ_INT(l->queue_write(l, 0xFFFC, two, 8), 0);
     CHECK_EQ_INT(l->send_queued_writes(l), 0);
-    int req = fb.requests;
     CHECK_EQ_INT(l->read(l, 0x3000, &r, 4), -EINVAL);
     CHECK(strstr(log.last, "outside the register window") != NULL);
     CHECK(strstr(log.last, "reply to an earlier request") != NULL);
@@ -342,6 +370,7 @@ int main(void)
     RUN(test_board_error_keeps_connection);
     RUN(test_board_gone_reported_once);
     RUN(test_timeout_and_bad_reply);
+    RUN(test_send_timeout);
     RUN(test_identity_checks);
     RUN(test_configuration);
     RUN(test_async_writes);

@@ -121,13 +121,23 @@ int vbc_req_put(vbc_t *c, const void *data, size_t n)
     return 0;
 }
 
+/* Send everything, but never wait longer than the call timeout for buffer
+ * space: a hung board that stops reading must not block the caller. */
 static int send_all(vbc_t *c, const uint8_t *p, size_t n)
 {
+    int64_t deadline = now_ms() + c->timeout_ms;
     while (n) {
-        ssize_t w = send(c->fd, p, n, MSG_NOSIGNAL);
+        ssize_t w = send(c->fd, p, n, MSG_NOSIGNAL | MSG_DONTWAIT);
         if (w < 0) {
             if (errno == EINTR)
                 continue;
+            if (errno == EAGAIN || errno == EWOULDBLOCK) {
+                int left = (int)(deadline - now_ms());
+                struct pollfd pfd = {.fd = c->fd, .events = POLLOUT};
+                if (left <= 0 || (poll(&pfd, 1, left) == 0))
+                    return fail(c, -ETIMEDOUT, "the board does not take requests (send timeout)");
+                continue;
+            }
             char m[96];
             snprintf(m, sizeof m, "send failed: %s (board gone?)", strerror(errno));
             return fail(c, -ENODEV, m);
