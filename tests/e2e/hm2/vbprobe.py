@@ -6,6 +6,7 @@
     vbprobe.py SOCK drive PIN low|high|release
     vbprobe.py SOCK quad A B RATE [INDEX EVERY]
     vbprobe.py SOCK hello KEY                print '%%KEY {hello}'
+    vbprobe.py SOCK stall on|off             EPP boards: stop/resume acknowledging
 
 Every request carries host time 0: the board's clock is not advanced, the
 HAL session (lockstep) owns it.
@@ -45,6 +46,8 @@ def main(argv: list[str]) -> int:
                 c.quad(a, b, rate, int(rest[3]), int(rest[4]))
             else:
                 c.quad(a, b, rate)
+        elif cmd == "stall":
+            c.epp_stall(rest[0] == "on")
         elif cmd == "hello":
             print(f"%%{rest[0]} {json.dumps(dataclasses.asdict(c.hello()))}", flush=True)
         else:
