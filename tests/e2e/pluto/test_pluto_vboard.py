@@ -311,3 +311,23 @@ def test_stepgen_steps_and_timing_on_the_pins(tmp_path: Path) -> None:
         st2, d2 = pins(out, "s2")
         assert st2["rising"] - st["rising"] == c1 - c2  # every step went back
         assert d2["rising"] >= 1  # DIR went high for the negative move
+
+
+def test_killed_board_is_a_communication_error(tmp_path: Path) -> None:
+    with board(tmp_path) as b:
+        script = servo(b.socket_path) + (
+            "simrun 2ms\n"
+            f"loadusr -w kill -9 {b.proc.pid}\n"
+            "simrun 5ms\n"
+            + e2e.tag("err", "pluto-servo.communication-error")
+            + "unloadrt pluto_servo\n"
+            + "loadusr -w echo @@unloaded\n"
+        )
+        r = e2e.halrun(tmp_path, script, timeout=60)
+        out = r.stdout + r.stderr
+        v = e2e.values(out)
+        # every read failed; HAL kept running and the driver unloads
+        assert int(v["err"][0]) >= 1
+        assert "unloaded" in v
+        # the transport failure is reported once, not once per period
+        assert out.count("EPP request failed") == 1, out
