@@ -23,8 +23,12 @@ BOARDS = {
 DB25 = [1, 14, 2, 15, 3, 16, 4, 17, 5, 6, 7, 8, 9, 10, 11, 12, 13]
 
 
+PINMAPS = Path(__file__).resolve().parents[1] / "data" / "pinmaps"
+
+
 def read_csv(name: str) -> list[dict[str, str]]:
-    with open(DATA / name, newline="") as f:
+    path = DATA / name if (DATA / name).exists() else PINMAPS / name
+    with open(path, newline="") as f:
         return list(csv.DictReader(f))
 
 

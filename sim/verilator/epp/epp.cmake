@@ -2,7 +2,9 @@
 #
 # EPP boards of the virtual board (included by sim/verilator/CMakeLists.txt):
 # the Pluto-P with the Verilated pluto_servo and pluto_step firmwares
-# (pluto_board.cpp) and their firmware files $HM_FIRMWARE_DIR/<fw>.rbf.
+# (pluto_board.cpp) and their firmware files $HM_FIRMWARE_DIR/<fw>.rbf, and
+# the 7i43 with the Verilated hm2 EPP firmwares (hm2_epp_board.cpp; their
+# .BIT files and fwinfo headers come from the main CMakeLists).
 set(VB_EPP_DIR ${CMAKE_CURRENT_SOURCE_DIR}/epp)
 file(GLOB VB_PLUTO_HDL CONFIGURE_DEPENDS ${VB_HDL}/pluto/*.v ${VB_HDL}/common/*.v)
 set(VB_PLUTO_RBF "")
@@ -22,5 +24,17 @@ foreach(fw pluto_servo pluto_step)
     list(APPEND VB_PLUTO_RBF ${rbf})
 endforeach()
 add_custom_target(vboard_pluto_firmware ALL DEPENDS ${VB_PLUTO_RBF})
-list(APPEND VBOARD_SOURCES ${VB_EPP_DIR}/pluto_board.cpp)
-list(APPEND VBOARD_FACTORIES vb_factory_pluto)
+foreach(fw svst4_4 sv8)
+    string(TOUPPER ${fw} FW)
+    set(top hm2_7i43_${fw})
+    set(gen ${VB_GENERATED}/7i43/${FW})
+    vboard_verilate(NAME V${top} TOP ${top}
+        SOURCES ${gen}/${top}.v
+        INCLUDE_DIRS ${gen}
+        LIBRARY_DIRS ${VB_HDL}/hostmot2 ${VB_HDL}/common
+        DEPENDS ${gen}/${top}_inc.v ${VB_HDL_SOURCES})
+    list(APPEND VBOARD_LIBS V${top})
+endforeach()
+list(APPEND VBOARD_SOURCES ${VB_EPP_DIR}/epp_port_board.cpp ${VB_EPP_DIR}/pluto_board.cpp
+                           ${VB_EPP_DIR}/hm2_epp_board.cpp)
+list(APPEND VBOARD_FACTORIES vb_factory_pluto vb_factory_hm2_epp)

@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-#include "board.h"
+#include "epp_port_board.h"
 #include "fwimage.h"
 #include "pins.h"
 #include "verilated.h"
@@ -42,16 +42,9 @@
 namespace vb {
 namespace {
 
-constexpr uint64_t kClockNs = 25;          // 40 MHz
-constexpr uint64_t kEppTimeoutNs = 10000;  // PC port: ~10 us
+constexpr uint64_t kClockNs = 25; // 40 MHz
 constexpr uint32_t kPins = 43;
 constexpr uint32_t kFirstInput = 23;
-constexpr uint8_t kStatusTimeout = 0x01;
-// enum epp_op_kind (host/driver/include/hm2/epp_port.h)
-enum : uint8_t {
-    OP_ADDR_WRITE = 1, OP_ADDR_READ, OP_DATA_WRITE, OP_DATA_READ, OP_STATUS_READ,
-    OP_STATUS_WRITE, OP_CONTROL_WRITE, OP_SPP_DATA_WRITE, OP_ECR_WRITE, OP_DELAY
-};
 
 // The firmware-facing signals of one clock.
 struct PlutoIn {
@@ -131,7 +124,7 @@ uint32_t design_id(const char *name)
     return crc32(reinterpret_cast<const uint8_t *>(name), std::strlen(name));
 }
 
-class PlutoBoard final : public Board {
+class PlutoBoard final : public EppPortBoard {
   public:
     PlutoBoard() : pins_(kPins) {}
 
@@ -149,7 +142,6 @@ class PlutoBoard final : public Board {
         return v;
     }
     PinBank &pins() override { return pins_; }
-    uint64_t now_ns() const override { return now_; }
 
     void run_until(uint64_t t) override
     {
@@ -161,18 +153,16 @@ class PlutoBoard final : public Board {
             return;
         }
         while (now_ + kClockNs <= t)
-            clock();
+            step();
     }
 
     int config(uint32_t op, const uint8_t *, size_t, vb_config_status &st,
                std::string &err) override
     {
         std::memset(&st, 0, sizeof st);
-        if (op == VB_CONFIG_STATUS) {
-            status(st);
-            return 0;
-        }
         status(st);
+        if (op == VB_CONFIG_STATUS)
+            return 0;
         err = "pluto: the Pluto-P is configured through its parallel port (nCONFIG/DCLK/DATA0 "
               "on nInit/nStrobe/data), not through the configuration port";
         return -ENOTSUP;
@@ -190,54 +180,58 @@ class PlutoBoard final : public Board {
         return 0;
     }
 
-    int epp(const uint8_t *req, size_t len, std::vector<uint8_t> &out, std::string &err) override
+  protected:
+    bool fpga_running() const override { return model_ != nullptr; }
+    uint64_t step_ns() const override { return kClockNs; }
+    bool fpga_nwait() const override { return out_.nwait; }
+    bool fpga_data(uint8_t &d) const override
     {
-        // Parse everything first: a payload that does not parse changes nothing.
-        size_t off = 0, nreads = 0;
-        while (off < len) {
-            vb_epp_op op;
-            if (len - off < sizeof op) {
-                err = "EPP request: truncated operation at byte " + std::to_string(off);
-                return -EPROTO;
-            }
-            std::memcpy(&op, req + off, sizeof op);
-            off += sizeof op;
-            if (op.kind < OP_ADDR_WRITE || op.kind > OP_DELAY) {
-                err = "EPP request: unknown operation kind " + std::to_string(op.kind) +
-                      " at byte " + std::to_string(off - sizeof op);
-                return -EPROTO;
-            }
-            if (op.kind == OP_DATA_WRITE) {
-                if (len - off < op.n) {
-                    err = "EPP request: data write of " + std::to_string(op.n) +
-                          " bytes runs past the payload";
-                    return -EPROTO;
-                }
-                off += op.n;
-            }
-            nreads += op.kind == OP_DATA_READ ? op.n
-                      : (op.kind == OP_ADDR_READ || op.kind == OP_STATUS_READ) ? 1 : 0;
-            if (nreads > VB_MAX_PAYLOAD) {
-                err = "EPP request: reads more than the reply can carry";
-                return -EPROTO;
-            }
-        }
-        out.reserve(out.size() + nreads);
-        for (off = 0; off < len;) {
-            vb_epp_op op;
-            std::memcpy(&op, req + off, sizeof op);
-            off += sizeof op;
-            execute(op, req + off, out);
-            if (op.kind == OP_DATA_WRITE)
-                off += op.n;
-        }
-        return 0;
+        d = out_.d;
+        return out_.d_oe;
     }
 
-    int epp_stall(bool on, std::string &) override
+    // One 40 MHz clock: inputs from the pins, outputs back to them.
+    void step() override
     {
-        stall_ = on;
-        return 0;
+        uint64_t t = now_ + kClockNs;
+        if (pins_.next_event_ns() <= t)
+            pins_.run_events(t);
+        const uint32_t *lv = pins_.inputs();
+        uint64_t all = lv[0] | (static_cast<uint64_t>(lv[1]) << 32);
+        PlutoIn in;
+        in.d = bus_.d;
+        in.nwrite = bus_.nwrite;
+        in.ndatastr = bus_.ndatastr;
+        in.naddrstr = bus_.naddrstr;
+        in.nreset = (control_ & 0x04) != 0;
+        in.io_in = static_cast<uint32_t>((all >> kFirstInput) & ((1ull << fw_->n_in) - 1));
+        model_->clock(in, out_);
+        uint64_t o = out_.io_out & ((1ull << fw_->n_out) - 1);
+        uint64_t e = out_.io_oe & ((1ull << fw_->n_out) - 1);
+        uint32_t ow[2] = {static_cast<uint32_t>(o), static_cast<uint32_t>(o >> 32)};
+        uint32_t ew[2] = {static_cast<uint32_t>(e), static_cast<uint32_t>(e >> 32)};
+        pins_.set_fpga(ow, ew, t);
+        now_ = t;
+    }
+
+    // nInit (bit 2) is nCONFIG, nStrobe (bit 0, inverted by the port) DCLK.
+    void control_written(uint8_t old, uint8_t v) override
+    {
+        bool ninit_was = (old & 0x04) != 0, ninit = (v & 0x04) != 0;
+        bool dclk_was = (old & 0x01) == 0, dclk = (v & 0x01) == 0;
+        if (ninit_was && !ninit) {
+            // nCONFIG low: the FPGA clears itself and waits for a bitstream.
+            if (fw_)
+                std::fprintf(stderr, "vboard: pluto: nCONFIG low: firmware %s cleared\n",
+                             fw_->name);
+            unconfigure();
+            loading_ = true;
+            bits_.clear();
+            nbits_ = 0;
+            return;
+        }
+        if (loading_ && ninit && !dclk_was && dclk)
+            shift_in(spp_ & 1u);
     }
 
   private:
@@ -260,8 +254,7 @@ class PlutoBoard final : public Board {
     {
         fw_ = &f;
         model_ = f.make();
-        in_ = PlutoIn{};
-        in_.nreset = nreset_pin();
+        out_ = PlutoOut{};
     }
 
     void unconfigure()
@@ -269,98 +262,6 @@ class PlutoBoard final : public Board {
         model_.reset();
         fw_ = nullptr;
         pins_.release_fpga(now_);
-    }
-
-    bool nreset_pin() const { return (control_ & 0x04) != 0; }
-
-    // One 40 MHz clock: inputs from the pins, outputs back to them.
-    void clock()
-    {
-        uint64_t t = now_ + kClockNs;
-        if (pins_.next_event_ns() <= t)
-            pins_.run_events(t);
-        const uint32_t *lv = pins_.inputs();
-        uint64_t all = lv[0] | (static_cast<uint64_t>(lv[1]) << 32);
-        in_.io_in = static_cast<uint32_t>((all >> kFirstInput) & ((1ull << fw_->n_in) - 1));
-        model_->clock(in_, out_);
-        uint64_t o = out_.io_out & ((1ull << fw_->n_out) - 1);
-        uint64_t e = out_.io_oe & ((1ull << fw_->n_out) - 1);
-        uint32_t ow[2] = {static_cast<uint32_t>(o), static_cast<uint32_t>(o >> 32)};
-        uint32_t ew[2] = {static_cast<uint32_t>(e), static_cast<uint32_t>(e >> 32)};
-        pins_.set_fpga(ow, ew, t);
-        now_ = t;
-    }
-
-    void wait_ns(uint64_t ns)
-    {
-        if (model_) {
-            uint64_t end = now_ + ns;
-            while (now_ < end)
-                clock();
-        } else {
-            run_until(now_ + ns);
-        }
-    }
-
-    // The firmware acknowledges (nWait at the IEEE 1284 level 1) - never
-    // while blank or stalled.
-    bool ack() const { return model_ && !stall_ && out_.nwait; }
-
-    // One EPP cycle, pin-level.  Returns false on a timeout.
-    bool cycle(bool addr, bool write, uint8_t wbyte, uint8_t &rbyte)
-    {
-        rbyte = 0xFF;
-        if (status_ & kStatusTimeout)
-            return false; // the port refuses cycles until the bit is cleared
-        in_.nwrite = !write;
-        in_.d = write ? wbyte : 0xFF;
-        wait_ns(kClockNs); // setup
-        (addr ? in_.naddrstr : in_.ndatastr) = false;
-        uint64_t start = now_;
-        bool ok = true;
-        while (!ack()) {
-            if (now_ - start >= kEppTimeoutNs) {
-                ok = false;
-                break;
-            }
-            wait_ns(kClockNs);
-        }
-        if (ok && !write)
-            rbyte = out_.d_oe ? out_.d : 0xFF;
-        (addr ? in_.naddrstr : in_.ndatastr) = true;
-        if (ok) {
-            start = now_;
-            while (ack() && now_ - start < kEppTimeoutNs)
-                wait_ns(kClockNs);
-            ok = !ack();
-        }
-        in_.nwrite = true;
-        in_.d = 0xFF;
-        wait_ns(kClockNs); // recovery
-        if (!ok)
-            status_ |= kStatusTimeout;
-        return ok;
-    }
-
-    void control_write(uint8_t v)
-    {
-        bool ninit_was = (control_ & 0x04) != 0, ninit = (v & 0x04) != 0;
-        bool dclk_was = (control_ & 0x01) == 0, dclk = (v & 0x01) == 0; // nStrobe inverted
-        control_ = v;
-        in_.nreset = ninit;
-        if (ninit_was && !ninit) {
-            // nCONFIG low: the FPGA clears itself and waits for a bitstream.
-            if (fw_)
-                std::fprintf(stderr, "vboard: pluto: nCONFIG low: firmware %s cleared\n",
-                             fw_->name);
-            unconfigure();
-            loading_ = true;
-            bits_.clear();
-            nbits_ = 0;
-            return;
-        }
-        if (loading_ && ninit && !dclk_was && dclk)
-            shift_in(spp_ & 1u);
     }
 
     void shift_in(unsigned bit)
@@ -395,61 +296,11 @@ class PlutoBoard final : public Board {
                      err.c_str());
     }
 
-    void execute(const vb_epp_op &op, const uint8_t *data, std::vector<uint8_t> &out)
-    {
-        uint8_t b = 0;
-        switch (op.kind) {
-        case OP_ADDR_WRITE:
-            cycle(true, true, static_cast<uint8_t>(op.val), b);
-            break;
-        case OP_ADDR_READ:
-            cycle(true, false, 0, b);
-            out.push_back(b);
-            break;
-        case OP_DATA_WRITE:
-            for (uint32_t i = 0; i < op.n; i++)
-                cycle(false, true, data[i], b);
-            break;
-        case OP_DATA_READ:
-            for (uint32_t i = 0; i < op.n; i++) {
-                cycle(false, false, 0, b);
-                out.push_back(b);
-            }
-            break;
-        case OP_STATUS_READ:
-            out.push_back(status_);
-            break;
-        case OP_STATUS_WRITE:
-            // Ports differ (clear on writing 1 or 0); the drivers write both,
-            // this one clears on a 1.
-            if (op.val & kStatusTimeout)
-                status_ &= static_cast<uint8_t>(~kStatusTimeout);
-            break;
-        case OP_CONTROL_WRITE:
-            control_write(static_cast<uint8_t>(op.val));
-            break;
-        case OP_SPP_DATA_WRITE:
-            spp_ = static_cast<uint8_t>(op.val);
-            break;
-        case OP_ECR_WRITE:
-            ecr_ = static_cast<uint8_t>(op.val);
-            break;
-        case OP_DELAY:
-            wait_ns(op.val);
-            break;
-        default:
-            break;
-        }
-    }
-
     PinBank pins_;
     const PlutoFw *fw_ = nullptr;
     std::unique_ptr<PlutoModel> model_;
-    PlutoIn in_;
     PlutoOut out_;
-    uint64_t now_ = 0;
-    uint8_t status_ = 0, control_ = 0x04, spp_ = 0, ecr_ = 0;
-    bool stall_ = false, loading_ = false;
+    bool loading_ = false;
     std::vector<uint8_t> bits_;
     size_t nbits_ = 0;
 };
