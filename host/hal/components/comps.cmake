@@ -1,0 +1,63 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+#
+# Every *.comp in this folder -> halcompile --preprocess -> NAME.c -> lib/rtlib/NAME.so
+# (or bin/NAME for `option userspace`).  Adding a .comp file is all it takes:
+# the glob re-runs when files appear or disappear.  Whether a component is
+# realtime or userspace is asked at configure time (one halcompile --kind run
+# for all files); if a file's kind changes later, its preprocess step notices,
+# touches comp-kinds.stamp (which makes the next build re-configure) and fails
+# with a message saying to build again.
+find_package(Python3 3.11 REQUIRED COMPONENTS Interpreter)
+set(HALCOMPILE_PKG ${CMAKE_SOURCE_DIR}/tools/halcompile)
+file(GLOB HALCOMPILE_PY CONFIGURE_DEPENDS ${HALCOMPILE_PKG}/halcompile/*.py)
+file(GLOB HM_COMP_FILES CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.comp)
+set(HM_COMP_OUT ${CMAKE_CURRENT_BINARY_DIR}/generated)
+set(HM_COMP_STAMP ${CMAKE_CURRENT_BINARY_DIR}/comp-kinds.stamp)
+file(MAKE_DIRECTORY ${HM_COMP_OUT})
+if(NOT EXISTS ${HM_COMP_STAMP})
+    file(WRITE ${HM_COMP_STAMP} "")
+endif()
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${HM_COMP_STAMP})
+set(HALCOMPILE_CMD ${CMAKE_COMMAND} -E env PYTHONPATH=${HALCOMPILE_PKG}
+    ${Python3_EXECUTABLE} -m halcompile)
+
+set(hm_comp_kinds "")
+if(HM_COMP_FILES)
+    execute_process(COMMAND ${HALCOMPILE_CMD} --kind ${HM_COMP_FILES}
+                    OUTPUT_VARIABLE hm_comp_kinds RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+        message(FATAL_ERROR "halcompile --kind failed on the .comp files (${rc})")
+    endif()
+    string(REPLACE "\n" ";" hm_comp_kinds "${hm_comp_kinds}")
+endif()
+
+set(i 0)
+foreach(comp ${HM_COMP_FILES})
+    list(GET hm_comp_kinds ${i} line)
+    math(EXPR i "${i} + 1")
+    string(REPLACE " " ";" line "${line}")
+    list(GET line 0 name)
+    list(GET line 1 kind)
+    set(csrc ${HM_COMP_OUT}/${name}.c)
+    add_custom_command(
+        OUTPUT ${csrc}
+        COMMAND ${HALCOMPILE_CMD} --preprocess --expect-kind ${kind} --kind-stamp ${HM_COMP_STAMP}
+                -o ${csrc} ${comp}
+        DEPENDS ${comp} ${HALCOMPILE_PY}
+        COMMENT "halcompile ${name}.comp"
+        VERBATIM)
+    # Target comp_NAME, file NAME: component names may equal other targets.
+    if(kind STREQUAL "user")
+        add_executable(comp_${name} ${csrc})
+        set_target_properties(comp_${name} PROPERTIES OUTPUT_NAME ${name})
+    else()
+        add_library(comp_${name} MODULE ${csrc})
+        set_target_properties(comp_${name} PROPERTIES
+            OUTPUT_NAME ${name}
+            PREFIX ""
+            LIBRARY_OUTPUT_DIRECTORY ${HM_RTLIB_DIR}
+            C_VISIBILITY_PRESET hidden)
+        target_link_options(comp_${name} PRIVATE -Wl,-Bsymbolic)
+    endif()
+    target_link_libraries(comp_${name} PRIVATE halcomp hal m)
+endforeach()
