@@ -5,7 +5,7 @@
  * written against libgpiod 1.6 (Debian's libgpiod-dev): one chip, 12 lines
  * (D0-D7, nWrite, nDataStr, nAddrStr, nWait) plus an optional 13th (nInit).
  *
- * Spec (the part after "gpiod:"):
+ * Spec (the part after "gpiod:", parsed by gpiod_linespec):
  *     CHIP:lines=D0/D1/.../D7/NWRITE/NDATASTR/NADDRSTR/NWAIT[/NINIT][:timeout_us=N]
  * CHIP is anything gpiod_chip_open_lookup() accepts (gpiochip0,
  * /dev/gpiochip0, a label or a number); line offsets are separated by '/'
@@ -20,6 +20,7 @@
 #include <time.h>
 
 #include "hm2/epp_port.h"
+#include "hm2/gpiod_linespec.h"
 
 struct lines_priv {
     struct gpiod_chip *chip;
@@ -111,75 +112,32 @@ static void l_close(void *ctx)
 }
 
 /* Parse the spec into chip name, offsets and options (no system access;
- * exposed for the unit tests). */
+ * exposed for the unit tests).  The syntax is gpiod_linespec's. */
 int epp_gpiod_parse(const char *spec, char *chip, size_t chiplen, unsigned *offsets, int *n,
                     uint32_t *timeout_ns, char *err, size_t errlen);
 int epp_gpiod_parse(const char *spec, char *chip, size_t chiplen, unsigned *offsets, int *n,
                     uint32_t *timeout_ns, char *err, size_t errlen)
 {
-    char buf[256];
-    if (!spec || strlen(spec) >= sizeof(buf)) {
-        snprintf(err, errlen, "gpiod port: spec missing or too long");
-        return -EINVAL;
-    }
-    snprintf(buf, sizeof(buf), "%s", spec);
-    char *save = NULL;
-    char *tok = strtok_r(buf, ":", &save);
-    if (!tok || !*tok) {
-        snprintf(err, errlen, "gpiod port '%s': missing chip (gpiod:gpiochip0:lines=...)", spec);
-        return -EINVAL;
-    }
-    snprintf(chip, chiplen, "%s", tok);
-    *n = 0;
-    int have_lines = 0;
-    while ((tok = strtok_r(NULL, ":", &save)) != NULL) {
-        if (strncmp(tok, "timeout_us=", 11) == 0) {
-            char *end;
-            unsigned long us = strtoul(tok + 11, &end, 10);
-            if (*end || us == 0 || us > 1000000 || tok[11] == '-' || tok[11] == '\0') {
-                snprintf(err, errlen, "gpiod port '%s': bad timeout_us '%s' (1..1000000)", spec,
-                         tok + 11);
-                return -EINVAL;
-            }
-            *timeout_ns = (uint32_t)(us * 1000u);
-            continue;
-        }
-        if (have_lines) {
-            snprintf(err, errlen, "gpiod port '%s': unknown option '%s'", spec, tok);
-            return -EINVAL;
-        }
-        const char *list = strncmp(tok, "lines=", 6) == 0 ? tok + 6 : tok;
-        char *s2 = NULL, lb[200];
-        snprintf(lb, sizeof(lb), "%s", list);
-        for (char *o = strtok_r(lb, "/,", &s2); o; o = strtok_r(NULL, "/,", &s2)) {
-            char *end;
-            unsigned long v = strtoul(o, &end, 10);
-            if (*end || !*o || o[0] == '-' || v > 4096) {
-                snprintf(err, errlen, "gpiod port '%s': bad line offset '%s'", spec, o);
-                return -EINVAL;
-            }
-            if (*n >= EPP_GPIO_NLINES) {
-                snprintf(err, errlen, "gpiod port '%s': more than %d line offsets", spec,
-                         EPP_GPIO_NLINES);
-                return -EINVAL;
-            }
-            for (int k = 0; k < *n; k++)
-                if (offsets[k] == v) {
-                    snprintf(err, errlen, "gpiod port '%s': line %lu used twice (%s and %s)",
-                             spec, v, role_name[k], role_name[*n]);
-                    return -EINVAL;
-                }
-            offsets[(*n)++] = (unsigned)v;
-        }
-        have_lines = 1;
-    }
-    if (*n != 12 && *n != 13) {
+    struct gpiod_linespec ls;
+    unsigned long timeout_us = 0;
+    const struct gpiod_linespec_opt opt = {"timeout_us", 1, 1000000, &timeout_us};
+    int r = gpiod_linespec_parse(spec, "gpiod port", role_name, EPP_GPIO_NLINES, 0, &opt, 1, &ls,
+                                 err, errlen);
+    if (r)
+        return r;
+    if (ls.n != 12 && ls.n != 13) {
         snprintf(err, errlen,
                  "gpiod port '%s': need 12 line offsets (D0-D7, nWrite, nDataStr, nAddrStr, "
                  "nWait) or 13 (+ nInit), got %d",
-                 spec, *n);
+                 spec, ls.n);
         return -EINVAL;
     }
+    snprintf(chip, chiplen, "%s", ls.chip);
+    for (int i = 0; i < ls.n; i++)
+        offsets[i] = (unsigned)ls.offset[i];
+    *n = ls.n;
+    if (timeout_us)
+        *timeout_ns = (uint32_t)(timeout_us * 1000u);
     return 0;
 }
 
