@@ -21,6 +21,30 @@ set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${HM_COMP_STAMP})
 set(HALCOMPILE_CMD ${CMAKE_COMMAND} -E env PYTHONPATH=${HALCOMPILE_PKG}
     ${Python3_EXECUTABLE} -m halcompile)
 
+# conv_IN_OUT: one component per type pair of LinuxCNC 2.9, from conv.comp.in.
+set(HM_CONV_PAIRS bit:float bit:s32 bit:u32 float:s32 float:u32 s32:bit s32:float s32:u32
+    u32:bit u32:float u32:s32)
+set(HM_CONV_RANGE float:s32 float:u32 s32:bit s32:u32 u32:bit u32:s32)
+set(HM_CONV_DIR ${CMAKE_CURRENT_BINARY_DIR}/conv)
+foreach(pair ${HM_CONV_PAIRS})
+    string(REPLACE ":" ";" io ${pair})
+    list(GET io 0 IN)
+    list(GET io 1 OUT)
+    string(TOUPPER "K_${IN}" K_IN)
+    string(TOUPPER "K_${OUT}" K_OUT)
+    set(FP nofp)
+    if(IN STREQUAL "float" OR OUT STREQUAL "float")
+        set(FP fp)
+    endif()
+    set(RANGE_DECLS "")
+    if(pair IN_LIST HM_CONV_RANGE)
+        set(RANGE_DECLS "pin out bit out_of_range \"TRUE when in did not fit in out\";\nparam rw bit clamp \"TRUE: out is limited to the range of its type\";")
+    endif()
+    configure_file(${CMAKE_CURRENT_SOURCE_DIR}/conv.comp.in ${HM_CONV_DIR}/conv_${IN}_${OUT}.comp
+                   @ONLY)
+    list(APPEND HM_COMP_FILES ${HM_CONV_DIR}/conv_${IN}_${OUT}.comp)
+endforeach()
+
 set(hm_comp_kinds "")
 if(HM_COMP_FILES)
     execute_process(COMMAND ${HALCOMPILE_CMD} --kind ${HM_COMP_FILES}

@@ -75,11 +75,18 @@ typedef struct {
     void (*extra_cleanup)(void); /* or NULL */
 } halcomp_desc_t;
 
-/* The module parameters as given on the loadrt line. */
+/* The module parameters as given on the loadrt line.  A component with
+ * `option rtapi_app no` may load itself through HALCOMP_LOAD(&args) with
+ * another count parameter (siggen's num_chan=): count_name, max_count and
+ * max_names then replace "count", HALCOMP_MAX_COUNT and HALCOMP_MAX_NAMES
+ * (0/NULL: the defaults). */
 typedef struct {
     int count;
-    char *const *names;   /* HALCOMP_MAX_NAMES entries, unset ones NULL */
+    char *const *names;     /* max_names entries, unset ones NULL */
     const int *personality; /* HALCOMP_MAX_PERSONALITY entries */
+    const char *count_name;
+    int max_count;
+    int max_names;
 } halcomp_args_t;
 
 /* Load the component: resolve the instances, hal_init(), export each one,

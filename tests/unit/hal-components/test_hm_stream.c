@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
  * Unit tests of hm_stream (cfg strings, the shared-memory ring between a
- * sampler/streamer channel and its peer) and of hm_comp's count=/names=
- * resolution, against expectations written from sampler(9)/and2(9).
+ * sampler/streamer channel and its peer), against expectations written from
+ * sampler(9).
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -13,7 +13,6 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "hm_comp.h"
 #include "hm_stream.h"
 
 static void test_cfg(void)
@@ -136,46 +135,6 @@ static void test_bad_create(void)
     CHECK(strstr(err, "too large") != NULL);
 }
 
-static void test_instance_names(void)
-{
-    char(*out)[HAL_NAME_LEN + 1] = calloc(HM_COMP_MAX_COUNT, sizeof(*out));
-    char *none[4] = {NULL, NULL, NULL, NULL};
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, none, 4, 15, out), 1);
-    CHECK_EQ_STR(out[0], "and2.0");
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 3, 1000, none, 4, 15, out), 3);
-    CHECK_EQ_STR(out[2], "and2.2");
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", -1, 1000, none, 4, 15, out),
-                 -EINVAL);
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 1001, 1000, none, 4, 15, out),
-                 -EINVAL);
-    char *two[4] = {"a", "b", NULL, NULL};
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, two, 4, 15, out), 2);
-    CHECK_EQ_STR(out[1], "b");
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 2, 1000, two, 4, 15, out),
-                 -EINVAL);
-    char *dup[4] = {"a", "a", NULL, NULL};
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, dup, 4, 15, out),
-                 -EINVAL);
-    char *gap[4] = {"a", "", "b", NULL};
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, gap, 4, 15, out),
-                 -EINVAL);
-    char *blank[4] = {"a b", NULL, NULL, NULL};
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, blank, 4, 15, out),
-                 -EINVAL);
-    /* 32 + 15 = 47 fits, 33 + 15 does not */
-    char n32[40], n33[40];
-    memset(n32, 'x', 32);
-    n32[32] = '\0';
-    memset(n33, 'x', 33);
-    n33[33] = '\0';
-    char *ok[4] = {n32, NULL, NULL, NULL};
-    char *bad[4] = {n33, NULL, NULL, NULL};
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, ok, 4, 15, out), 1);
-    CHECK_EQ_INT(hm_comp_instance_names("and2", "and2", "count", 0, 1000, bad, 4, 15, out),
-                 -EINVAL);
-    free(out);
-}
-
 int main(void)
 {
     char inst[64];
@@ -185,6 +144,5 @@ int main(void)
     RUN(test_ring);
     RUN(test_full_and_order);
     RUN(test_bad_create);
-    RUN(test_instance_names);
     return check_summary();
 }

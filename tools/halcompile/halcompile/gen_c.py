@@ -74,6 +74,7 @@ class _Gen:
         self.src = source_name
         self.out_name = out_name
         self.lines: list[str] = []
+        self.own_rtapi_app = comp.options.get("rtapi_app", "yes").lower() in ("no", "0", "false")
         self.single_body = (
             not comp.userspace and len(comp.functions) == 1 and not uses_function_macro(comp.code)
         )
@@ -113,7 +114,7 @@ class _Gen:
             "",
             "static int comp_id;",
         )
-        if not c.userspace:
+        if not c.userspace and not self.own_rtapi_app:
             self.module_params()
         for m in c.modparams:
             self.modparam(m.ctype, m.name, m.default, m.doc)
@@ -199,7 +200,10 @@ class _Gen:
                     f"{int(f.fp)}}},"
                 )
             self.w("};")
-        self.w("static int __comp_export(char *, long, long);")
+        self.w(
+            "static int __comp_export(char *, long, long);",
+            "static int __comp_load(const halcomp_args_t *args) __attribute__((unused));",
+        )
         if c.option("extra_setup"):
             self.w("static int extra_setup(struct __comp_state *, char *, long);")
         if c.option("extra_cleanup"):
@@ -229,6 +233,7 @@ class _Gen:
             "__comp_inst = __comp_inst->_next)",
             "#define personality (__comp_inst->_personality)",
             "#define export(...) __comp_export_(__VA_ARGS__, 0L, 0L)",
+            "#define HALCOMP_LOAD(args) __comp_load(args)",
             "#define __comp_export_(p, e, q, ...) __comp_export((p), (e), (q))",
         )
         if "data" in c.options:
@@ -376,7 +381,6 @@ class _Gen:
         has_names = not (c.option("singleton") or c.option("count_function"))
         default_count = c.options.get("default_count", "1")
         self.w(
-            "static int __comp_load(const halcomp_args_t *args) __attribute__((unused));",
             "static int __comp_load(const halcomp_args_t *args)",
             "{",
             "    static const halcomp_desc_t desc = {",
@@ -398,7 +402,7 @@ class _Gen:
 
     def rt_entry(self) -> None:
         c = self.comp
-        if not c.options.get("rtapi_app", "yes").lower() in ("no", "0", "false"):
+        if not self.own_rtapi_app:
             has_names = not (c.option("singleton") or c.option("count_function"))
             self.w(
                 "int rtapi_app_main(void)",

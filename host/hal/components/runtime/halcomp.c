@@ -131,14 +131,17 @@ static int resolve(const halcomp_desc_t *d, const halcomp_args_t *a,
                                                HALCOMP_MAX_COUNT, NULL, 0, d->longest_suffix,
                                                out);
     }
+    const char *cname = a->count_name ? a->count_name : "count";
+    int max_count = a->max_count > 0 ? a->max_count : HALCOMP_MAX_COUNT;
+    int max_names = a->max_names > 0 ? a->max_names : HALCOMP_MAX_NAMES;
     int count = a->count;
     if (count == 0 && !(d->has_names && a->names && a->names[0] && a->names[0][0]))
         count = d->default_count;
     if (count == 0 && !d->has_names)
         return 0;
-    return halcomp_instance_names(d->modname, d->prefix, "count", count, HALCOMP_MAX_COUNT,
-                                  d->has_names ? a->names : NULL, HALCOMP_MAX_NAMES,
-                                  d->longest_suffix, out);
+    return halcomp_instance_names(d->modname, d->prefix, cname, count, max_count,
+                                  d->has_names ? a->names : NULL, max_names, d->longest_suffix,
+                                  out);
 }
 
 API int halcomp_load(const halcomp_desc_t *d, const halcomp_args_t *a, int *comp_id)
