@@ -117,7 +117,12 @@ void hm2_write(void *arg, long period)
     hostmot2_t *hm2 = ((struct hm2_funct_handle *)arg)->board;
     if (!hm2 || *hm2->io_error)
         return;
-    if (hm2->needs_reset && !recover(hm2))
+    /* After a bite the transfers go on as in LinuxCNC 2.9 (the pet, the
+     * rates, the GPIO outputs: the board keeps its outputs safe until the
+     * bite is cleared); only the full configuration rewrite waits until the
+     * user clears has_bit. */
+    bool bitten = hm2_watchdog_has_bit(hm2);
+    if (hm2->needs_reset && !bitten && !recover(hm2))
         return;
     hm2_ioport_enable_module_outputs(hm2);
     hm2_watchdog_prepare_write(hm2, period);
@@ -170,7 +175,7 @@ void hm2_pet_watchdog(void *arg, long period)
 {
     hostmot2_t *hm2 = ((struct hm2_funct_handle *)arg)->board;
     (void)period;
-    if (!hm2 || *hm2->io_error || hm2->needs_reset)
+    if (!hm2 || *hm2->io_error || (hm2->needs_reset && !hm2_watchdog_has_bit(hm2)))
         return;
     if (hm2_watchdog_pet(hm2)) {
         hm2_msg(hm2, HM2_ERR, "pet_watchdog failed, setting io_error (clear it to retry)");

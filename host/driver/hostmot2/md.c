@@ -158,7 +158,12 @@ static int accept_md(hostmot2_t *hm2, int i)
         return 0;
     }
     struct hm2_module *m = module_slot(hm2, md->gtag);
-    if (m->present) {
+    /* Plain and muxed encoders share one set of HAL encoder objects
+     * (hm2_X.encoder.NN): LinuxCNC 2.9 treats the second kind as a duplicate. */
+    const struct hm2_module *twin = md->gtag == HM2_GTAG_ENCODER         ? &hm2->muxed_encoder
+                                    : md->gtag == HM2_GTAG_MUXED_ENCODER ? &hm2->encoder
+                                                                          : NULL;
+    if (m->present || (twin && twin->present)) {
         hm2_msg(hm2, HM2_ERR,
                 "found duplicate Module Descriptor for %s (inconsistent firmware), not loading "
                 "driver",
@@ -167,6 +172,14 @@ static int accept_md(hostmot2_t *hm2, int i)
     }
     if (check_md(hm2, md, rule) || check_md_extent(hm2, i, md))
         return -EINVAL;
+    if (md->gtag == HM2_GTAG_STEPGEN && md->version == 0xC2) {
+        hm2_msg(hm2, HM2_ERR,
+                "MD %d: StepGen v0xC2 (index/probe position latching) is not supported by this "
+                "driver: its index-enable, probe-enable and position-latch pins cannot be "
+                "created, not loading driver (use a firmware with StepGen v2 or v0x42)",
+                i);
+        return -EINVAL;
+    }
 
     int used = md->instances;
     switch (md->gtag) {

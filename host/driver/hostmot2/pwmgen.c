@@ -110,7 +110,12 @@ void hm2_pwmgen_prepare_write(hostmot2_t *hm2)
     if (!s->config_written)
         hm2_pwmgen_force_write(hm2); /* pwm_bits is known only after a config write */
     for (int i = 0; i < s->num; i++) {
-        const struct pwm_hal *h = &s->hal[i];
+        struct pwm_hal *h = &s->hal[i];
+        if (h->scale == 0.0) {
+            /* value/scale is meaningless: like a zero encoder scale, reset it */
+            hm2_msg(hm2, HM2_ERR, "pwmgen.%02d.scale is 0, setting it to 1.0", i);
+            h->scale = 1.0;
+        }
         int type = (h->output_type >= 1 && h->output_type <= 4) ? h->output_type : 1;
         s->value[i] = hm2_pwmgen_value_register(*h->value, h->scale, *h->enable, type, s->pwm_bits,
                                                 h->offset_mode, s->dither_capable && h->dither);
@@ -143,6 +148,11 @@ void hm2_pwmgen_force_write(hostmot2_t *hm2)
     if (!s)
         return;
     uint32_t clock = s->md->clock_freq;
+    if (s->ghal->pwm_frequency < 1) {
+        hm2_msg(hm2, HM2_ERR, "pwmgen.pwm_frequency %u Hz is too low, setting it to 1 Hz",
+                (unsigned)s->ghal->pwm_frequency);
+        s->ghal->pwm_frequency = 1;
+    }
     struct hm2_pwm_rate rate = hm2_pwmgen_pwm_rate(s->ghal->pwm_frequency, clock);
     if (rate.clipped) {
         hm2_msg(hm2, HM2_ERR, "pwmgen.pwm_frequency %u Hz is too high: max PWM frequency is %d Hz",

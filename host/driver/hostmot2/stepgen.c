@@ -174,6 +174,17 @@ void hm2_stepgen_process_read(hostmot2_t *hm2, long period)
     }
 }
 
+/* LinuxCNC 2.9 takes a negative maxaccel as its absolute value (a negative
+ * limit would otherwise flip the ramp direction and the position would run
+ * away). */
+static void sanitize_maxaccel(hostmot2_t *hm2, int i, struct sg_hal *h)
+{
+    if (h->maxaccel < 0.0) {
+        hm2_msg(hm2, HM2_ERR, "stepgen.%02d.maxaccel < 0, setting to its absolute value", i);
+        h->maxaccel = -h->maxaccel;
+    }
+}
+
 static double effective_maxvel(hostmot2_t *hm2, int i, struct sg_hal *h)
 {
     double physical = hm2_stepgen_physical_maxvel(h->steplen, h->stepspace, h->position_scale);
@@ -203,6 +214,7 @@ void hm2_stepgen_prepare_write(hostmot2_t *hm2, long period)
         struct sg_instance *g = &s->inst[i];
         struct sg_hal *h = g->hal;
         double maxvel = effective_maxvel(hm2, i, h);
+        sanitize_maxaccel(hm2, i, h);
         if (!*h->enable || T <= 0.0) {
             s->rate[i] = 0;
             *h->velocity_fb = 0.0;

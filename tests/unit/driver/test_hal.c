@@ -274,11 +274,22 @@ static void test_watchdog_bite(void)
     CHECK_EQ_INT(*fake_bit(PFX ".watchdog.has_bit"), 1);
     CHECK(tlog_find(&lg, "hm2/" PFX ": Watchdog has bit! (set the .has-bit pin to False to resume)",
                     0) >= 0);
+    /* LinuxCNC 2.9: the transfers go on while bitten (pet, rates, GPIO
+     * data), but no configuration is rewritten until has_bit is cleared */
+    hm2_image_put32(&im, 0x0E00, 0);
     int writes = (int)im.writes;
     fake_run(PFX ".write", PERIOD);
+    CHECK((int)im.writes > writes);
+    CHECK_EQ_INT(reg(0x0E00), 0x5A000000u); /* still petted */
+    hm2_image_put32(&im, 0x0E00, 0);
     fake_run(PFX ".pet_watchdog", PERIOD);
+    CHECK_EQ_INT(reg(0x0E00), 0x5A000000u);
     fake_run(PFX ".read", PERIOD);
-    CHECK_EQ_INT((int)im.writes, writes); /* no communication while bitten */
+    CHECK_EQ_INT(reg(0x1100), 0);   /* DDR not restored behind the user's back */
+    CHECK_EQ_INT(reg(0x0D00), 1);   /* bite not cleared */
+    CHECK_EQ_INT(*fake_bit(PFX ".watchdog.has_bit"), 1);
+    CHECK(tlog_find(&lg, "hm2/" PFX ": trying to recover from IO error or Watchdog bite", 0) < 0);
+    CHECK_EQ_INT(*fake_bit(PFX ".io_error"), 0);
     *fake_bit(PFX ".watchdog.has_bit") = 0;
     fake_run(PFX ".read", PERIOD);
     CHECK_EQ_INT(*fake_bit(PFX ".watchdog.has_bit"), 0);

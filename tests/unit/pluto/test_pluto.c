@@ -743,6 +743,95 @@ static void test_read_firmware(void)
     unlink(tmpl);
 }
 
+/* ---- parameter sanitizing, one test per parameter (LinuxCNC 2.9: spec
+ * §4.2, §6.2).  Not sanitized there, nor here: encoder/stepgen scale (0
+ * gives an infinite position, as in 2.9), pwm offset, stepspace (only
+ * enters fmax). ---- */
+
+static void test_sanitize_servo_max_dc(void)
+{
+    servo_setup(NULL);
+    pwm_en[0] = 1;
+    pwm_val[0] = 0.9;
+    S.pwm_max_dc[0] = 1.5; /* above 1: 1 */
+    CHECK_EQ_INT(pluto_servo_pwm_word(&S, 0), (int)(0.9 * 2047));
+    CHECK(S.pwm_max_dc[0] == 1.0);
+    S.pwm_max_dc[0] = -0.5; /* below 0: 0, output off */
+    CHECK_EQ_INT(pluto_servo_pwm_word(&S, 0), 0);
+    CHECK(S.pwm_max_dc[0] == 0.0);
+    S.pwm_max_dc[0] = NAN; /* not a number: 1 */
+    pluto_servo_pwm_word(&S, 0);
+    CHECK(S.pwm_max_dc[0] == 1.0);
+}
+
+static void test_sanitize_servo_min_dc(void)
+{
+    servo_setup(NULL);
+    pwm_en[0] = 1;
+    pwm_val[0] = 0.01;
+    S.pwm_max_dc[0] = 0.4;
+    S.pwm_min_dc[0] = 0.7; /* above max-dc: max-dc */
+    CHECK_EQ_INT(pluto_servo_pwm_word(&S, 0), (int)(0.4 * 2047));
+    CHECK(S.pwm_min_dc[0] == 0.4);
+    S.pwm_min_dc[0] = -0.3; /* below 0: 0 */
+    CHECK_EQ_INT(pluto_servo_pwm_word(&S, 0), (int)(0.01 * 2047));
+    CHECK(S.pwm_min_dc[0] == 0.0);
+}
+
+static void test_sanitize_step_maxvel(void)
+{
+    open_raw_pluto(1);
+    P.pluto_step = 1;
+    step_setup(&PORT);
+    T.watchdog = 0;
+    T.scale[1] = 10;
+    T.maxvel[1] = -4; /* taken as 4 */
+    s_en[1] = 1;
+    s_cmd[1] = 100;
+    log_clear();
+    pluto_step_write(&T, 1000000);
+    CHECK(T.maxvel[1] == 4.0);
+    CHECK_EQ_STR(logbuf, "");
+    CHECK_EQ_INT(P.wreg[1], (int)(4 * 10 * 2048 * 1.6e-6));
+    epp_port_close(&PORT);
+}
+
+static void time_case(hal_u32_t *param, const char *what, int shift)
+{
+    open_raw_pluto(1);
+    P.pluto_step = 1;
+    step_setup(&PORT);
+    T.watchdog = 0;
+    *param = 1000000;
+    log_clear();
+    pluto_step_write(&T, 1000000);
+    char want[160];
+    snprintf(want, sizeof(want),
+             "1:Requested %s 1000000ns decreased to 49600ns due to hardware limitations\n", what);
+    CHECK_EQ_STR(logbuf, want);
+    CHECK_EQ_INT(*param, 49600);
+    CHECK_EQ_INT((P.wreg[5] >> shift) & 0x1F, 31);
+    *param = 8000; /* in range: 5 ticks, kept */
+    log_clear();
+    pluto_step_write(&T, 1000000);
+    CHECK_EQ_STR(logbuf, "");
+    CHECK_EQ_INT(*param, 8000);
+    CHECK_EQ_INT((P.wreg[5] >> shift) & 0x1F, 5);
+    epp_port_close(&PORT);
+}
+
+static void test_sanitize_step_steplen(void)
+{
+    step_setup(NULL);
+    time_case(&T.steplen, "step length", 0);
+}
+
+static void test_sanitize_step_dirtime(void)
+{
+    step_setup(NULL);
+    time_case(&T.dirtime, "direction change time", 8);
+}
+
 int main(void)
 {
     RUN(test_extend);
@@ -760,5 +849,10 @@ int main(void)
     RUN(test_upload_raw);
     RUN(test_upload_batched_and_gpiod);
     RUN(test_read_firmware);
+    RUN(test_sanitize_servo_max_dc);
+    RUN(test_sanitize_servo_min_dc);
+    RUN(test_sanitize_step_maxvel);
+    RUN(test_sanitize_step_steplen);
+    RUN(test_sanitize_step_dirtime);
     return check_summary();
 }
