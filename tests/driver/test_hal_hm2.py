@@ -153,8 +153,8 @@ getp hm2_5i20.0.watchdog.has_bit
 
 
 def test_watchdog_bite_and_recovery(tmp_path: Path, img: Path) -> None:
-    """A bite (status bit set through the raw pins) sets has_bit and stops
-    writes; clearing has_bit recovers, as the seed describes."""
+    """A bite (status bit set through the raw pins) sets has_bit; clearing
+    has_bit recovers, as the seed describes."""
     script = f"""loadrt hostmot2
 loadrt hm2_test image={img} config="num_encoders=1 enable_raw"
 loadrt threads name1=servo period1=1000000

@@ -125,6 +125,12 @@ int hm2_firmware_find(const char *search_path, const char *name, char *out, size
     return -ENOENT;
 }
 
+/* The build's own firmware directory, compiled in so that a `make` tree
+ * finds its firmware without any environment variable. */
+#ifndef HM2_BUILD_FIRMWARE_DIR
+#define HM2_BUILD_FIRMWARE_DIR ""
+#endif
+
 const char *hm2_firmware_default_path(char *buf, size_t len)
 {
     const char *env = getenv("HM2_FIRMWARE_PATH");
@@ -133,10 +139,15 @@ const char *hm2_firmware_default_path(char *buf, size_t len)
         return buf;
     }
     const char *build = getenv("HM_BUILD");
+    const char *own = HM2_BUILD_FIRMWARE_DIR;
+    size_t n = 0;
+    buf[0] = 0;
     if (build && *build)
-        snprintf(buf, len, "%s/lib/firmware:/lib/firmware", build);
-    else
-        snprintf(buf, len, "/lib/firmware");
+        n += (size_t)snprintf(buf + n, n < len ? len - n : 0, "%s/lib/firmware:", build);
+    if (*own && n < len)
+        n += (size_t)snprintf(buf + n, len - n, "%s:", own);
+    if (n < len)
+        snprintf(buf + n, len - n, "/lib/firmware");
     return buf;
 }
 

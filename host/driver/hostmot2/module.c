@@ -25,7 +25,7 @@ RTAPI_MP_INT(use_serial_numbers, "Name cards by their serial number (accepted fo
 static int sserial_baudrate = -1;
 RTAPI_MP_INT(sserial_baudrate, "Over-ride the standard smart-serial baud rate (accepted for compatibility; not used)");
 static char *firmware_path = NULL;
-RTAPI_MP_STRING(firmware_path, "Colon-separated firmware search path (default $HM2_FIRMWARE_PATH or $HM_BUILD/lib/firmware:/lib/firmware)");
+RTAPI_MP_STRING(firmware_path, "Colon-separated firmware search path (default $HM2_FIRMWARE_PATH, else $HM_BUILD/lib/firmware, the build's lib/firmware and /lib/firmware)");
 
 static int comp_id;
 

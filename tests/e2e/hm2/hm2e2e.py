@@ -73,7 +73,12 @@ def tag(name: str, *hal_names: str) -> str:
 
 
 def halrun(
-    tmp: Path, script: str, timeout: float = 120, simclock: bool = True, extra_env: dict[str, str] | None = None
+    tmp: Path,
+    script: str,
+    timeout: float = 120,
+    simclock: bool = True,
+    extra_env: dict[str, str] | None = None,
+    drop_env: tuple[str, ...] = (),
 ) -> subprocess.CompletedProcess[str]:
     f = tmp / f"t{uuid.uuid4().hex[:6]}.hal"
     f.write_text(script)
@@ -82,6 +87,8 @@ def halrun(
     env["HM_BUILD"] = str(BUILD)
     env.pop("HM2_FIRMWARE_PATH", None)  # firmware from $HM_BUILD/lib/firmware
     env.update(extra_env or {})
+    for name in drop_env:
+        env.pop(name, None)
     opts = ["-S"] if simclock else []
     r = subprocess.run(
         [str(HALRUN), *opts, "-f", str(f)], capture_output=True, text=True, timeout=timeout, env=env, cwd=tmp

@@ -74,6 +74,17 @@ def test_firmware_load_and_seed_pinout(tmp_path: Path, blank: vboard.VBoardProce
     assert (h.state, h.firmware) == (vboard.STATE_CONFIGURED, "SVST8_4")
 
 
+def test_firmware_found_without_environment(tmp_path: Path, blank: vboard.VBoardProcess) -> None:
+    """After `make`, firmware=hm2/5i20/SVST8_4.BIT is found in the build's
+    lib/firmware with neither $HM_BUILD nor $HM2_FIRMWARE_PATH set."""
+    sock = Path(blank.socket_path)
+    r = halrun(tmp_path, load(sock), drop_env=("HM_BUILD", "HM2_FIRMWARE_PATH"))
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    assert f"{PFX}: initialized virtual AnyIO board at {sock} (SVST8_4)" in out
+    assert hello(sock).state == vboard.STATE_CONFIGURED
+
+
 def test_hm2pinout_sim_source(tmp_path: Path) -> None:
     tool = BUILD / "bin" / "hm2pinout"
     with vboard.VBoardProcess(tmp_path / "b.sock", "5i20", "SVST8_4") as vb:

@@ -293,7 +293,13 @@ static void test_firmware_loader(void)
     CHECK_EQ_STR(hm2_firmware_default_path(path, sizeof(path)), "/a:/b");
     unsetenv("HM2_FIRMWARE_PATH");
     setenv("HM_BUILD", "/x/build", 1);
-    CHECK_EQ_STR(hm2_firmware_default_path(path, sizeof(path)), "/x/build/lib/firmware:/lib/firmware");
+    CHECK_EQ_STR(hm2_firmware_default_path(path, sizeof(path)),
+                 "/x/build/lib/firmware:" HM_OWN_FIRMWARE ":/lib/firmware");
+    /* without any environment: the build's own lib/firmware, then the system's */
+    unsetenv("HM_BUILD");
+    CHECK_EQ_STR(hm2_firmware_default_path(path, sizeof(path)), HM_OWN_FIRMWARE ":/lib/firmware");
+    char tiny[8];
+    CHECK(strlen(hm2_firmware_default_path(tiny, sizeof(tiny))) < sizeof(tiny));
 
     /* image llio file loading */
     char err[200];

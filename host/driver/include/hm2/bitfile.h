@@ -54,7 +54,8 @@ static inline uint8_t hm2_bitfile_reverse(uint8_t b)
 int hm2_firmware_find(const char *search_path, const char *name, char *out, size_t outlen);
 
 /* The search path in effect: $HM2_FIRMWARE_PATH if set, else
- * "$HM_BUILD/lib/firmware:/lib/firmware" (HM_BUILD when set). */
+ * "[$HM_BUILD/lib/firmware:]<this build>/lib/firmware:/lib/firmware"
+ * ($HM_BUILD when set; the build's own directory is compiled in). */
 const char *hm2_firmware_default_path(char *buf, size_t len);
 
 /* Read a whole file (at most max bytes) into a malloc'd buffer. */
