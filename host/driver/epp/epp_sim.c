@@ -18,6 +18,7 @@
 /* Weak: a program without libhal (a unit test, a tool) sends time 0, which
  * the board takes as "do not advance". */
 extern long long rtapi_get_time(void) __attribute__((weak));
+extern int rtapi_is_simclock(void) __attribute__((weak));
 
 struct epp_sim {
     vbc_t c;
@@ -93,6 +94,8 @@ static void sim_close(epp_port_t *port)
     if (!s)
         return;
     vbc_close(&s->c);
+    if (s->reported && vbc_remove_stale(s->c.path))
+        fprintf(stderr, "%s: removed the socket left by the dead board\n", port->name);
     free(s);
     port->priv = NULL;
 }
@@ -120,6 +123,11 @@ int epp_sim_open(epp_port_t *port, const char *socket_path, int wide, char *err,
         r = -ENODEV;
         goto fail;
     }
+    /* in a HAL session the requests carry its time: a lockstep board needs
+     * the simulated clock */
+    if (rtapi_get_time && rtapi_is_simclock &&
+        (r = vbc_check_clock(&s->c, &h, rtapi_is_simclock())) < 0)
+        goto fail;
     char name[64];
     snprintf(name, sizeof name, "sim:%s", socket_path);
     epp_port_init(port, &sim_backend, s, name, wide);

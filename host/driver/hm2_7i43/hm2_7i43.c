@@ -93,7 +93,7 @@ static int board_wanted(int i)
 static int setup_one(int i)
 {
     struct h7_slot *s = &slots[i];
-    char err[256];
+    char err[640];
     int r = epp_port_open(&s->port, port[i], ioaddr[i], ioaddr_hi[i], epp_wide[i], err,
                           sizeof(err));
     if (r) {

@@ -22,7 +22,7 @@ int pluto_module_setup(epp_port_t *port, const char *modname, const char *board,
                        const char *portspec, long ioaddr, long ioaddr_hi, int epp_wide,
                        const char *firmware)
 {
-    char err[256], path[1024];
+    char err[640], path[1024];
     uint8_t *image = NULL;
     size_t len = 0;
     struct pluto_log log = {pluto_rtapi_log, NULL};

@@ -35,7 +35,7 @@ void usage(FILE *f)
                  "usage: vboard --socket PATH --board NAME [--firmware NAME] [--freerun]\n"
                  "              [--loop FROM:TO[:inv]]... [--loop-file FILE]\n"
                  "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd|.fst] [--log]\n"
-                 "              [--spin USEC]\n"
+                 "              [--spin USEC] [--socket-mode OCTAL]\n"
                  "       vboard --list\n"
                  "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");
 }
@@ -142,7 +142,7 @@ int parse_args(int argc, char **argv, Options &o)
         {"quad", required_argument, nullptr, 'q'},    {"dump", required_argument, nullptr, 'd'},
         {"log", no_argument, nullptr, 'g'},           {"list", no_argument, nullptr, 'i'},
         {"help", no_argument, nullptr, 'h'},          {"spin", required_argument, nullptr, 'p'},
-        {nullptr, 0, nullptr, 0}};
+        {"socket-mode", required_argument, nullptr, 'm'}, {nullptr, 0, nullptr, 0}};
     std::string err;
     int c;
     while ((c = getopt_long(argc, argv, "s:b:f:", longopts, nullptr)) != -1) {
@@ -156,6 +156,18 @@ int parse_args(int argc, char **argv, Options &o)
         case 'g': o.server.log = true; break;
         case 'i': o.list = true; break;
         case 'd': o.dump = optarg; break;
+        case 'm': {
+            char *end = nullptr;
+            errno = 0;
+            unsigned long m = std::strtoul(optarg, &end, 8);
+            if (errno || !*optarg || *end || m > 0777 || (m & 0600) != 0600) {
+                err = std::string("bad --socket-mode '") + optarg +
+                      "': want octal permission bits that include 0600 (e.g. 0660)";
+                goto bad;
+            }
+            o.server.socket_mode = static_cast<unsigned>(m);
+            break;
+        }
         case 'p': {
             uint32_t us;
             if (!parse_u32(optarg, us) || us > 1000000) {

@@ -129,9 +129,18 @@ int Server::open(std::string &err)
             return -errno;
         }
     }
-    if (::bind(fd, reinterpret_cast<sockaddr *>(&sa), sizeof sa) < 0 || ::listen(fd, 8) < 0) {
-        int e = errno;
+    // Created owner-only whatever the umask (no window in which another user
+    // could connect), then given the requested mode.
+    mode_t old_umask = ::umask(0177);
+    int br = ::bind(fd, reinterpret_cast<sockaddr *>(&sa), sizeof sa);
+    int be = errno;
+    ::umask(old_umask);
+    if (br < 0 || ::chmod(sa.sun_path, static_cast<mode_t>(opt_.socket_mode)) < 0 ||
+        ::listen(fd, 8) < 0) {
+        int e = br < 0 ? be : errno;
         err = "cannot listen on " + opt_.socket_path + ": " + std::strerror(e);
+        if (br == 0)
+            ::unlink(sa.sun_path);
         ::close(fd);
         return -e;
     }

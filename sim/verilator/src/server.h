@@ -15,6 +15,9 @@ namespace vb {
 
 struct ServerOptions {
     std::string socket_path;
+    // Permission bits of the socket file, set explicitly (not from the
+    // umask): only the owner may connect unless asked (--socket-mode).
+    unsigned socket_mode = 0600;
     bool freerun = false;
     bool log = false;
     // After a request, keep polling without sleeping for this long: the next

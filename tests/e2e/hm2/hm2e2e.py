@@ -127,3 +127,18 @@ def num(v: dict[str, list[str]], key: str, i: int = 0) -> float:
     assert key in v and len(v[key]) > i, f"{key}[{i}] missing: {v}"
     s = v[key][i]
     return float(1 if s == "TRUE" else 0 if s == "FALSE" else s)
+
+
+def processes_mentioning(text: str) -> list[str]:
+    """Command lines of live processes whose arguments contain text."""
+    found = []
+    for d in Path("/proc").iterdir():
+        if not d.name.isdigit():
+            continue
+        try:
+            cmd = (d / "cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        if text in cmd and str(os.getpid()) != d.name:
+            found.append(f"{d.name}: {cmd}")
+    return found

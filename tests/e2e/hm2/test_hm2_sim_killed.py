@@ -8,7 +8,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from hm2e2e import PFX, halrun, load, needs_vboard, num, tag, values, vboard
+from hm2e2e import PFX, halrun, load, needs_vboard, num, processes_mentioning, tag, values, vboard
 
 pytestmark = needs_vboard
 
@@ -54,6 +54,12 @@ def test_killed_board(tmp_path: Path) -> None:
     assert after_kill.count("write failed, setting io_error") == 0, after_kill
     assert f"{PFX}: dropping virtual board" in out
     assert "hm2_sim: driver unloaded" in out
+    # nothing left behind: the killed board's socket file is removed at
+    # unload (it refuses connections), no process still runs on it
+    assert out.count(f"hm2_sim: removed the socket {sock} left by the dead board") == 1, out
+    assert not sock.exists()
+    assert vb.proc.poll() is not None
+    assert processes_mentioning(str(sock)) == []
 
 
 def test_hung_board_times_out_once(tmp_path: Path) -> None:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from hm2e2e import BUILD, PFX, halrun, load, needs_vboard, vboard
+from hm2e2e import BUILD, PFX, halrun, load, needs_vboard, num, tag, values, vboard
 
 from hm2image import expected_pin_lines  # noqa: E402  (tests/driver, put on sys.path by hm2e2e)
 
@@ -236,3 +236,36 @@ def test_async_writes_real_board(tmp_path: Path) -> None:
         fb = [float(x) for x in r.stdout.split() if re.fullmatch(r"-?\d+\.\d+(e-?\d+)?", x)]
         assert fb and abs(fb[-1] - 0.05) < 0.0011, out
     assert vb.proc.returncode == 0
+
+
+def test_lockstep_board_in_wall_clock_session(tmp_path: Path, blank: vboard.VBoardProcess) -> None:
+    """A lockstep board (the default) in a wall-clock session is refused at
+    once with what is wrong and what to do, instead of timing out as if the
+    board were gone; the board is left untouched and still answers."""
+    sock = Path(blank.socket_path)
+    r = halrun(tmp_path, load(sock) + "show comp\n", simclock=False)
+    out = r.stdout + r.stderr
+    assert r.returncode != 0, out
+    assert (
+        f"hm2_sim: the virtual board at {sock} runs in lockstep (the vboard default) but this HAL "
+        "session runs on the wall clock, so the board would fall behind real time; run the "
+        "session on the simulated clock (halrun -S) or start the board with vboard --freerun"
+    ) in out
+    assert "the board is gone" not in out
+    assert "no reply within the timeout" not in out
+    h = hello(sock)
+    assert (h.state, h.lockstep) == (vboard.STATE_BLANK, 1)
+
+
+def test_freerun_board_in_wall_clock_session(tmp_path: Path) -> None:
+    """A free-running board is the one for a wall-clock session: it loads and
+    the servo thread runs against it."""
+    with vboard.VBoardProcess(tmp_path / "f.sock", "5i20", args=["--freerun"]) as vb:
+        sock = Path(vb.socket_path)
+        script = load(sock) + "start\nloadusr -w sleep 0.3\nstop\n" + tag("err", f"{PFX}.io_error")
+        r = halrun(tmp_path, script, simclock=False)
+        out = r.stdout + r.stderr
+        assert r.returncode == 0, out
+        assert f"{PFX}: initialized virtual AnyIO board at {sock} (SVST8_4)" in out
+        assert "runs in lockstep" not in out
+        assert num(values(out), "err", 0) == 0, out

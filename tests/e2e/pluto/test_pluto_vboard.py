@@ -331,3 +331,26 @@ def test_killed_board_is_a_communication_error(tmp_path: Path) -> None:
         assert "unloaded" in v
         # the transport failure is reported once, not once per period
         assert out.count("EPP request failed") == 1, out
+        # nothing left behind: the socket the killed board could not remove
+        # is removed at unload, no process runs on it
+        assert out.count("removed the socket left by the dead board") == 1, out
+        assert not Path(b.socket_path).exists()
+        assert b.proc.poll() is not None
+        assert e2e.processes_mentioning(b.socket_path) == []
+
+
+def test_lockstep_board_in_wall_clock_session(tmp_path: Path) -> None:
+    """The sim: port refuses a lockstep board in a wall-clock session at once,
+    saying what to do (halrun -S or vboard --freerun)."""
+    with board(tmp_path) as b:
+        r = e2e.halrun(tmp_path, servo(b.socket_path) + "show comp\n", simclock=False)
+        out = r.stdout + r.stderr
+        assert r.returncode != 0, out
+        assert (
+            "pluto_servo: cannot open the parallel port: the virtual board at "
+            f"{b.socket_path} runs in lockstep (the vboard default) but this HAL session runs "
+            "on the wall clock"
+        ) in out
+        assert "halrun -S" in out and "vboard --freerun" in out
+        with b.client() as c:
+            assert c.hello().state == vboard.STATE_BLANK

@@ -118,6 +118,10 @@ static int setup_one(int i)
     if (r)
         return r;
     s->set_up = 1;
+    if (host_time && vbc_check_clock(&s->board.vbc, &s->board.hello, rtapi_is_simclock())) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: %s\n", s->board.vbc.err);
+        return -EINVAL;
+    }
     s->board.vbc.spin_us = spin_us;
     s->board.async_writes = async_writes != 0;
     hm2_board_fill_llio(s->board.info, type_index(i, s->board.hello.board), &s->board.llio);

@@ -399,6 +399,9 @@ fail:
 void hm2_sim_teardown(struct hm2_sim_board *sb)
 {
     vbc_close(&sb->vbc);
+    if (sb->dead && vbc_remove_stale(sb->vbc.path))
+        logf_(sb, HM2_PRINT, "hm2_sim: removed the socket %s left by the dead board",
+              sb->vbc.path);
     free(sb->q.xfer);
     free(sb->q.dest);
     free(sb->q.wbuf);

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <time.h>
 #include <unistd.h>
@@ -324,4 +325,36 @@ int vbc_hello(vbc_t *c, struct vb_hello *out)
     }
     memcpy(out, c->rx, sizeof *out);
     return 0;
+}
+
+int vbc_check_clock(vbc_t *c, const struct vb_hello *h, int client_on_simclock)
+{
+    if (!h->lockstep || client_on_simclock)
+        return 0;
+    snprintf(c->err, sizeof c->err,
+             "the virtual board at %s runs in lockstep (the vboard default) but this HAL "
+             "session runs on the wall clock, so the board would fall behind real time; run "
+             "the session on the simulated clock (halrun -S) or start the board with "
+             "vboard --freerun",
+             c->path);
+    return -EINVAL;
+}
+
+int vbc_remove_stale(const char *path)
+{
+    struct sockaddr_un sa;
+    struct stat st;
+    if (!path || !*path || strlen(path) >= sizeof sa.sun_path)
+        return 0;
+    if (lstat(path, &st) != 0 || !S_ISSOCK(st.st_mode))
+        return 0;
+    memset(&sa, 0, sizeof sa);
+    sa.sun_family = AF_UNIX;
+    memcpy(sa.sun_path, path, strlen(path) + 1);
+    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0)
+        return 0;
+    int refused = connect(fd, (struct sockaddr *)&sa, sizeof sa) != 0 && errno == ECONNREFUSED;
+    close(fd);
+    return refused && unlink(path) == 0;
 }

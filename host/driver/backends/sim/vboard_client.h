@@ -40,7 +40,7 @@ typedef struct vbc {
     int posted;
     uint16_t posted_type;
     uint32_t posted_seq;
-    char err[256];           /* last error text */
+    char err[512];           /* last error text */
 } vbc_t;
 
 /* Connect to the board's socket.  0, or -errno with the reason in c->err. */
@@ -66,6 +66,18 @@ int vbc_send(vbc_t *c, uint16_t type, uint64_t host_time_ns);
 int vbc_post(vbc_t *c, uint16_t type, uint64_t host_time_ns);
 /* Read and check the reply of a posted request, if any.  0 or -errno. */
 int vbc_collect(vbc_t *c);
+
+/* A lockstep board (the vboard default) runs its FPGA clocks up to the time
+ * each request carries: it needs a client on HAL's simulated clock.  On the
+ * wall clock it would have to simulate every real second and fall behind
+ * until calls time out.  Returns 0 when the pairing works, else -EINVAL
+ * with what is wrong and what to do in c->err. */
+int vbc_check_clock(vbc_t *c, const struct vb_hello *h, int client_on_simclock);
+
+/* Remove the socket file at `path` if it is a socket nobody listens on any
+ * more (a board killed with SIGKILL cannot remove its own).  A live board's
+ * socket, or anything that is not a socket, is left alone.  1 when removed. */
+int vbc_remove_stale(const char *path);
 
 /* One-shot helpers. */
 int vbc_call(vbc_t *c, uint16_t type, uint64_t host_time_ns, const void *payload, size_t n);
