@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import errno
 import os
 import signal
 import socket
@@ -111,8 +112,32 @@ def test_time_requests_switch_modes(client: VBoardClient) -> None:
     t2 = client.now()
     time.sleep(0.1)
     assert client.now() == t2
-    with pytest.raises(VBoardError, match="overflows"):
+    with pytest.raises(VBoardError, match="more than one request may advance the board"):
         client.advance(2**64 - 1)
+
+
+def test_one_request_advances_at_most_60_s(client: VBoardClient) -> None:
+    """A bad time stamp cannot keep the board simulating for hours while the
+    other clients wait: more than 60 s of board time in one request is
+    refused (-ERANGE) and the board's time does not move."""
+    t0 = client.now()
+    for ns in (60_000_000_001, 2**63, 2**64 - 1 - t0):
+        with pytest.raises(VBoardError, match="more than one request may advance the board") as e:
+            client.advance(ns)
+        assert e.value.status == -errno.ERANGE
+        assert client.now() == t0
+    # lockstep: a host time jump that far is refused the same way, and the
+    # next request re-takes the connection's epoch (no jump)
+    client.hello(time_ns=1_000_000)
+    t1 = client.board_time_ns
+    with pytest.raises(VBoardError, match="the host time jump of 3600.000 s") as e:
+        client.hello(time_ns=1_000_000 + 3600 * 10**9)
+    assert e.value.status == -errno.ERANGE
+    assert client.now() == t1
+    client.hello(time_ns=5 * 10**12)
+    assert client.board_time_ns == t1
+    client.hello(time_ns=5 * 10**12 + 1000)
+    assert client.board_time_ns == t1 + 1000
 
 
 def test_clients_at_once_and_one_after_another(svst: VBoardProcess) -> None:
@@ -377,3 +402,23 @@ def test_signal_while_a_client_is_connected(sockdir: Path) -> None:
     with pytest.raises((ConnectionError, OSError)):
         c.hello()
     c.close()
+
+
+def test_one_epp_request_is_bounded(sockdir: Path) -> None:
+    """An EPP request may ask for at most 2^20 bus cycles and 1 s of delays
+    (-E2BIG otherwise, nothing executed): a single request cannot keep the
+    board busy for minutes."""
+    with VBoardProcess(sockdir / "p.sock", "pluto", "pluto_servo") as p, p.client() as c:
+        t0 = c.now()
+        for ops, what in [
+            ([vboard.EppOp(4, n=(1 << 20) + 1)], "bus cycles"),
+            ([vboard.EppOp(4, n=1 << 19), vboard.EppOp(4, n=1 << 19), vboard.EppOp(1)], "bus cycles"),
+            ([vboard.EppOp(10, val=600_000_000), vboard.EppOp(10, val=400_000_001)], "more than 1 s"),
+        ]:
+            with pytest.raises(VBoardError, match=what) as e:
+                c.epp(ops)
+            assert e.value.status == -errno.E2BIG
+            assert c.now() == t0  # nothing ran
+        # within the bounds: executed (a 1 s delay is allowed)
+        assert c.epp([vboard.EppOp(5), vboard.EppOp(10, val=1000)]) == b"\x00"
+        assert c.now() >= t0 + 1000

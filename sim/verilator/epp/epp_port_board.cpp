@@ -11,6 +11,11 @@ namespace {
 constexpr uint8_t kStatusTimeout = 0x01;
 constexpr uint64_t kCpldCycleNs = 250;
 // enum epp_op_kind (host/driver/include/hm2/epp_port.h)
+// One request may ask for at most this many EPP cycles (~1 s of bus time,
+// more than a whole FPGA bitstream) and this much waiting: a request must
+// not keep the board simulating for minutes while other clients wait.
+constexpr uint64_t kMaxCyclesPerRequest = 1u << 20;
+constexpr uint64_t kMaxDelayPerRequestNs = 1000000000u;
 enum : uint8_t {
     OP_ADDR_WRITE = 1, OP_ADDR_READ, OP_DATA_WRITE, OP_DATA_READ, OP_STATUS_READ,
     OP_STATUS_WRITE, OP_CONTROL_WRITE, OP_SPP_DATA_WRITE, OP_ECR_WRITE, OP_DELAY
@@ -130,6 +135,7 @@ int EppPortBoard::epp(const uint8_t *req, size_t len, std::vector<uint8_t> &out,
 {
     // Parse everything first: a payload that does not parse changes nothing.
     size_t off = 0, nreads = 0;
+    uint64_t cycles = 0, delay_ns = 0;
     while (off < len) {
         vb_epp_op op;
         if (len - off < sizeof op) {
@@ -156,6 +162,18 @@ int EppPortBoard::epp(const uint8_t *req, size_t len, std::vector<uint8_t> &out,
         if (nreads > VB_MAX_PAYLOAD) {
             err = "EPP request: reads more than the reply can carry";
             return -EPROTO;
+        }
+        cycles += op.kind == OP_DATA_READ || op.kind == OP_DATA_WRITE ? op.n
+                  : (op.kind == OP_ADDR_READ || op.kind == OP_ADDR_WRITE) ? 1 : 0;
+        delay_ns += op.kind == OP_DELAY ? op.val : 0;
+        if (cycles > kMaxCyclesPerRequest) {
+            err = "EPP request: more than " + std::to_string(kMaxCyclesPerRequest) +
+                  " bus cycles in one request";
+            return -E2BIG;
+        }
+        if (delay_ns > kMaxDelayPerRequestNs) {
+            err = "EPP request: delays add up to more than 1 s in one request";
+            return -E2BIG;
         }
     }
     out.reserve(out.size() + nreads);

@@ -25,6 +25,10 @@ constexpr uint32_t kLbWindow = 0x10000;   // the hm2 address space (64 KiB)
 constexpr int kSendTimeoutMs = 5000;      // a client that does not read its replies is dropped
 constexpr uint64_t kFreerunSliceNs = 100000;   // board time per free-running step
 constexpr uint64_t kFreerunMaxLagNs = 50000000; // behind by more: re-base (run as fast as we can)
+// One request may advance the board by at most this much board time (a
+// servo period is ~1 ms): a client's bad time stamp must not keep the board
+// simulating for hours while every other client waits.
+constexpr uint64_t kMaxAdvanceNs = 60ull * 1000000000ull;
 
 const char *type_name(uint16_t t)
 {
@@ -235,6 +239,13 @@ bool Server::process(Conn &c)
     return alive;
 }
 
+bool Server::serve_bytes(int fd, const uint8_t *bytes, size_t n)
+{
+    Conn c{fd, next_id_++, {}};
+    c.rx.assign(bytes, bytes + n);
+    return process(c);
+}
+
 bool Server::send_reply(Conn &c, const vb_header &req, const Reply &r)
 {
     vb_header h{};
@@ -280,24 +291,47 @@ void Server::run_board(uint64_t t)
     }
 }
 
-void Server::advance_lockstep(Conn &c, uint64_t host_time)
+static std::string too_far(uint64_t ns, const char *what)
+{
+    char b[200];
+    std::snprintf(b, sizeof b,
+                  "%s of %.3f s is more than one request may advance the board (%.0f s); the "
+                  "board's time is unchanged",
+                  what, static_cast<double>(ns) * 1e-9, static_cast<double>(kMaxAdvanceNs) * 1e-9);
+    return b;
+}
+
+bool Server::advance_lockstep(Conn &c, uint64_t host_time, Reply &r)
 {
     if (!lockstep_ || host_time == 0)
-        return;
+        return true;
     if (!c.have_epoch) {
         // Board time continues where it is: this host time is "now".
-        c.epoch = static_cast<int64_t>(host_time) - static_cast<int64_t>(board_.now_ns());
+        // (modulo 2^64: any 64-bit host time is allowed, no signed overflow)
+        c.epoch = static_cast<int64_t>(host_time - board_.now_ns());
         c.have_epoch = true;
-        return;
+        return true;
     }
-    int64_t target = static_cast<int64_t>(host_time) - c.epoch;
-    if (target > 0 && static_cast<uint64_t>(target) > board_.now_ns())
-        run_board(static_cast<uint64_t>(target));
+    int64_t target = static_cast<int64_t>(host_time - static_cast<uint64_t>(c.epoch));
+    if (target <= 0 || static_cast<uint64_t>(target) <= board_.now_ns())
+        return true;
+    uint64_t jump = static_cast<uint64_t>(target) - board_.now_ns();
+    if (jump > kMaxAdvanceNs) {
+        r.status = -ERANGE;
+        r.data = msg_bytes(too_far(jump, "the host time jump") +
+                           "; the next request re-takes this connection's epoch");
+        c.have_epoch = false;
+        return false;
+    }
+    run_board(static_cast<uint64_t>(target));
+    return true;
 }
 
 Server::Reply Server::dispatch(Conn &c, const vb_header &h, const uint8_t *p, size_t n)
 {
-    advance_lockstep(c, h.time_ns);
+    Reply jumped;
+    if (!advance_lockstep(c, h.time_ns, jumped))
+        return jumped;
     switch (h.type) {
     case VB_HELLO: return r_hello();
     case VB_READ: return r_read(p, n);
@@ -441,8 +475,8 @@ Server::Reply Server::r_time(const uint8_t *p, size_t n)
     vb_time t = load<vb_time>(p);
     switch (t.op) {
     case VB_TIME_ADVANCE:
-        if (t.ns > UINT64_MAX - board_.now_ns())
-            VB_FAIL(-EINVAL, "TIME advance of " + std::to_string(t.ns) + " ns overflows");
+        if (t.ns > kMaxAdvanceNs)
+            VB_FAIL(-ERANGE, too_far(t.ns, "a TIME advance"));
         run_board(board_.now_ns() + t.ns);
         break;
     case VB_TIME_LOCKSTEP:

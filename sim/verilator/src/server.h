@@ -38,6 +38,11 @@ class Server {
     // Serve until SIGTERM/SIGINT (blocked by the caller and passed as a
     // signalfd).  Returns the exit status.
     int run(int signal_fd);
+    // Serve the requests in `bytes` as one connection's input (a trailing
+    // partial request is dropped); replies go to `fd`, a connected stream
+    // socket the caller drains.  false when the connection would be closed.
+    // For the protocol fuzz target: the same path as bytes from a socket.
+    bool serve_bytes(int fd, const uint8_t *bytes, size_t n);
 
   private:
     struct Conn {
@@ -58,7 +63,9 @@ class Server {
     bool on_readable(Conn &c);
     bool process(Conn &c);
     Reply dispatch(Conn &c, const vb_header &h, const uint8_t *p, size_t n);
-    void advance_lockstep(Conn &c, uint64_t host_time);
+    // false (and the reply in r) when the host time jumps further ahead
+    // than one request may advance the board.
+    bool advance_lockstep(Conn &c, uint64_t host_time, Reply &r);
     void run_board(uint64_t t);
     void freerun_step(uint64_t budget_ns);
     bool send_reply(Conn &c, const vb_header &req, const Reply &r);

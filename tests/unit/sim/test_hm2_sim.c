@@ -221,7 +221,7 @@ static void test_timeout_and_bad_reply(void)
     sb.vbc.timeout_ms = 200;
     fb.fault = FAKE_SILENT;
     fb.fault_at = fb.requests + 1;
-    uint32_t r;
+    uint32_t r = 0;
     double t0 = now_s();
     CHECK_EQ_INT(l->read(l, 0x100, &r, 4), -ENODEV);
     double dt = now_s() - t0;
