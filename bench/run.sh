@@ -9,7 +9,7 @@
 set -uo pipefail
 cd "$(dirname "$0")"
 status=0
-for area in hal hdl synth pluto pluto-host vboard hm2 driver; do
+for area in hal halcompile hdl synth pluto pluto-host vboard hm2 driver; do
     if [ -x "$area/run.sh" ]; then
         echo "=== bench/$area ==="
         if ! "./$area/run.sh"; then

@@ -30,6 +30,14 @@ C_TYPES = {
     "s64": "hal_s64_t",
     "u64": "hal_u64_t",
 }
+VALUE_TYPES = {
+    "bit": "bool",
+    "float": "double",
+    "s32": "rtapi_s32",
+    "u32": "rtapi_u32",
+    "s64": "rtapi_s64",
+    "u64": "rtapi_u64",
+}
 HAL_TYPE_CONST = {t: f"HAL_{t.upper()}" for t in C_TYPES}
 DIR_CONST = {"in": "HAL_IN", "out": "HAL_OUT", "io": "HAL_IO", "r": "HAL_RO", "rw": "HAL_RW"}
 UNUSED = "__attribute__((unused))"
@@ -159,7 +167,8 @@ class _Gen:
 
     def state(self) -> None:
         c = self.comp
-        self.w("struct __comp_state {", "    struct __comp_state *_next;", "    int _personality;")
+        # The pins and parameters first: they are what the functions touch.
+        self.w("struct __comp_state {")
         for it in c.items:
             ct = C_TYPES[it.type]
             arr = f"[{it.size}]" if it.is_array else ""
@@ -168,6 +177,7 @@ class _Gen:
         for v in c.variables:
             arr = f"[{v.size}]" if v.size else ""
             self.w(f"    {v.ctype} {v.stars}{v.name}{arr};")
+        self.w("    struct __comp_state *_next;", "    int _personality;")
         if "data" in c.options:
             self.w("    _Alignas(max_align_t) char _data[];")
         self.w(
@@ -240,7 +250,9 @@ class _Gen:
             self.w(f"#define data (*({c.options['data']} *)(void *)__comp_inst->_data)")
         for it in c.items:
             cn = c_name(it.name)
-            zero = "0+" if it.kind == "pin" and it.dir == "in" else ""
+            # an in pin reads as an rvalue (a cast, not LinuxCNC's 0+, which
+            # costs a floating-point add on float pins)
+            zero = f"({VALUE_TYPES[it.type]})" if it.kind == "pin" and it.dir == "in" else ""
             if it.kind == "pin":
                 ref = f"*__comp_inst->{cn}[i]" if it.is_array else f"*__comp_inst->{cn}"
             else:

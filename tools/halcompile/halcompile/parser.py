@@ -253,7 +253,12 @@ class _Parser:
         sc.skip()
         if sc.at("="):
             sc.i += 1
-            mp.default = sc.expr("default value", ";", stop_at_assign=True)
+            if sc.at_string():  # a string modparam's default: a C string literal
+                start = sc.i
+                sc.string("the default value")
+                mp.default = sc.text[start : sc.i]
+            else:
+                mp.default = sc.expr("default value", ";", stop_at_assign=True)
         mp.doc = self._doc()
         assert self.comp is not None
         self.comp.modparams.append(mp)
