@@ -34,10 +34,10 @@
 #include <string.h>
 
 #include "hal.h"
-#include "hm_stream.h"
+#include "halstream.h"
 #include "rtapi.h"
 
-#define MAX_CHAN HM_STREAM_MAX_CHAN
+#define MAX_CHAN HALSTREAM_MAX_CHAN
 
 static int depth[MAX_CHAN];
 RTAPI_MP_ARRAY_INT(depth, MAX_CHAN, "fifo depth (samples) of each channel");
@@ -51,9 +51,9 @@ typedef struct {
     hal_s32_t *overruns;
     hal_s32_t *sample_num;
     int npins;
-    hal_type_t types[HM_STREAM_MAX_PINS];
-    void *pins[HM_STREAM_MAX_PINS];
-    hm_stream_t fifo;
+    hal_type_t types[HALSTREAM_MAX_PINS];
+    void *pins[HALSTREAM_MAX_PINS];
+    halstream_t fifo;
 } sampler_t;
 
 /* Module-level: the component id and the channel table that
@@ -62,69 +62,26 @@ static int comp_id;
 static sampler_t *chans[MAX_CHAN];
 static int nchan;
 
-static void read_pin(const sampler_t *s, int i, hm_stream_value_t *v)
-{
-    memset(v, 0, sizeof(*v));
-    switch (s->types[i]) {
-    case HAL_BIT:
-        v->b = *(hal_bit_t *)s->pins[i];
-        break;
-    case HAL_FLOAT:
-        v->f = *(hal_float_t *)s->pins[i];
-        break;
-    case HAL_S32:
-        v->s = *(hal_s32_t *)s->pins[i];
-        break;
-    case HAL_U32:
-        v->u = *(hal_u32_t *)s->pins[i];
-        break;
-    case HAL_S64:
-        v->ls = *(hal_s64_t *)s->pins[i];
-        break;
-    case HAL_U64:
-        v->lu = *(hal_u64_t *)s->pins[i];
-        break;
-    default:
-        break;
-    }
-}
-
 static void sample(void *arg, long period)
 {
     sampler_t *s = arg;
-    hm_stream_value_t vals[HM_STREAM_MAX_PINS];
+    halstream_value_t vals[HALSTREAM_MAX_PINS];
     (void)period;
     if (!*s->enable)
         return;
     for (int i = 0; i < s->npins; i++)
-        read_pin(s, i, &vals[i]);
+        halstream_from_pin(s->types[i], s->pins[i], &vals[i]);
     rtapi_u32 num = (rtapi_u32)*s->sample_num;
     *s->sample_num = (rtapi_s32)(num + 1u);
-    int r = hm_stream_write(&s->fifo, vals, num);
-    if (r == -ENOSPC && rtapi_is_simclock()) {
-        /* wait for the reader while it is there; virtual time stands still */
-        unsigned spins = 0;
-        while (r == -ENOSPC) {
-            if ((spins++ % 64) == 0 && !hm_stream_peer_attached(&s->fifo))
-                break;
-            if (rtapi_sim_yield())
-                break;
-            r = hm_stream_write(&s->fifo, vals, num);
-        }
-    }
+    int r = halstream_write(&s->fifo, vals, num);
+    /* simulated clock: wait for the reader while it is there */
+    if (r == -ENOSPC && rtapi_is_simclock() && halstream_wait_peer(&s->fifo, 1))
+        r = halstream_write(&s->fifo, vals, num);
     if (r != 0)
         (*s->overruns)++;
-    int fill = hm_stream_fill(&s->fifo);
+    int fill = halstream_fill(&s->fifo);
     *s->curr_depth = fill;
-    *s->full = fill >= hm_stream_capacity(&s->fifo);
-}
-
-static int count_strings(char **a, int max)
-{
-    int n = 0;
-    while (n < max && a[n] != NULL && a[n][0] != '\0')
-        n++;
-    return n;
+    *s->full = fill >= halstream_capacity(&s->fifo);
 }
 
 static int init_channel(int n, const hal_type_t *types, int npins)
@@ -155,7 +112,7 @@ static int init_channel(int n, const hal_type_t *types, int npins)
         if (r < 0)
             return r;
     }
-    r = hm_stream_create(&s->fifo, "sampler", n, depth[n], npins, types, err, sizeof(err));
+    r = halstream_create(&s->fifo, "sampler", n, depth[n], npins, types, err, sizeof(err));
     if (r < 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "SAMPLER: ERROR: channel %d: %s\n", n, err);
         return r;
@@ -171,51 +128,20 @@ static void destroy_channels(void)
 {
     for (int i = 0; i < MAX_CHAN; i++) {
         if (chans[i] != NULL)
-            hm_stream_destroy(&chans[i]->fifo);
+            halstream_destroy(&chans[i]->fifo);
         chans[i] = NULL;
     }
 }
 
 int rtapi_app_main(void)
 {
-    hal_type_t types[MAX_CHAN][HM_STREAM_MAX_PINS];
+    hal_type_t types[MAX_CHAN][HALSTREAM_MAX_PINS];
     int npins[MAX_CHAN];
-    char err[256];
 
-    nchan = count_strings(cfg, MAX_CHAN);
-    if (nchan == 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "SAMPLER: ERROR: no channels specified (cfg= missing)\n");
-        return -EINVAL;
-    }
     /* Validate everything before creating anything. */
-    for (int n = nchan; n < MAX_CHAN; n++) {
-        if (cfg[n] != NULL && cfg[n][0] != '\0') {
-            rtapi_print_msg(RTAPI_MSG_ERR, "SAMPLER: ERROR: cfg string %d is empty\n", nchan);
-            return -EINVAL;
-        }
-        if (depth[n] != 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR,
-                            "SAMPLER: ERROR: depth given for channel %d but only %d cfg "
-                            "string(s)\n",
-                            n, nchan);
-            return -EINVAL;
-        }
-    }
-    for (int n = 0; n < nchan; n++) {
-        if (depth[n] <= 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR,
-                            "SAMPLER: ERROR: channel %d (cfg=%s): depth missing or not "
-                            "positive (%d)\n",
-                            n, cfg[n], depth[n]);
-            return -EINVAL;
-        }
-        npins[n] = hm_stream_parse_cfg(cfg[n], types[n], err, sizeof(err));
-        if (npins[n] < 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR, "SAMPLER: ERROR: channel %d: bad cfg '%s': %s\n", n,
-                            cfg[n], err);
-            return -EINVAL;
-        }
-    }
+    nchan = halstream_check_params("SAMPLER", cfg, depth, MAX_CHAN, types, npins);
+    if (nchan < 0)
+        return nchan;
     comp_id = hal_init("sampler");
     if (comp_id < 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "SAMPLER: ERROR: hal_init() failed\n");

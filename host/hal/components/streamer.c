@@ -34,10 +34,10 @@
 #include <string.h>
 
 #include "hal.h"
-#include "hm_stream.h"
+#include "halstream.h"
 #include "rtapi.h"
 
-#define MAX_CHAN HM_STREAM_MAX_CHAN
+#define MAX_CHAN HALSTREAM_MAX_CHAN
 
 static int depth[MAX_CHAN];
 RTAPI_MP_ARRAY_INT(depth, MAX_CHAN, "fifo depth (samples) of each channel");
@@ -53,41 +53,15 @@ typedef struct {
     hal_s32_t *clock_mode;
     int last_clock;
     int npins;
-    hal_type_t types[HM_STREAM_MAX_PINS];
-    void *pins[HM_STREAM_MAX_PINS];
-    hm_stream_t fifo;
+    hal_type_t types[HALSTREAM_MAX_PINS];
+    void *pins[HALSTREAM_MAX_PINS];
+    halstream_t fifo;
 } streamer_t;
 
 /* Module-level: the component id and the channel table rtapi_app_exit
  * needs (the channels themselves live in HAL memory). */
 static int comp_id;
 static streamer_t *chans[MAX_CHAN];
-
-static void write_pin(const streamer_t *s, int i, const hm_stream_value_t *v)
-{
-    switch (s->types[i]) {
-    case HAL_BIT:
-        *(hal_bit_t *)s->pins[i] = v->b != 0;
-        break;
-    case HAL_FLOAT:
-        *(hal_float_t *)s->pins[i] = v->f;
-        break;
-    case HAL_S32:
-        *(hal_s32_t *)s->pins[i] = v->s;
-        break;
-    case HAL_U32:
-        *(hal_u32_t *)s->pins[i] = v->u;
-        break;
-    case HAL_S64:
-        *(hal_s64_t *)s->pins[i] = v->ls;
-        break;
-    case HAL_U64:
-        *(hal_u64_t *)s->pins[i] = v->lu;
-        break;
-    default:
-        break;
-    }
-}
 
 static int clocked(streamer_t *s)
 {
@@ -110,39 +84,24 @@ static int clocked(streamer_t *s)
 static void update(void *arg, long period)
 {
     streamer_t *s = arg;
-    hm_stream_value_t vals[HM_STREAM_MAX_PINS];
+    halstream_value_t vals[HALSTREAM_MAX_PINS];
     (void)period;
     int doclk = clocked(s);
     int want = *s->enable && doclk;
-    if (want && rtapi_is_simclock() && hm_stream_fill(&s->fifo) == 0) {
-        /* wait for the writer while it is there; virtual time stands still */
-        unsigned spins = 0;
-        while (hm_stream_fill(&s->fifo) == 0) {
-            if ((spins++ % 64) == 0 && !hm_stream_peer_attached(&s->fifo))
-                break;
-            if (rtapi_sim_yield())
-                break;
-        }
-    }
-    int fill = hm_stream_fill(&s->fifo);
+    /* simulated clock: wait for the writer while it is there */
+    if (want && rtapi_is_simclock() && halstream_fill(&s->fifo) == 0)
+        halstream_wait_peer(&s->fifo, 0);
+    int fill = halstream_fill(&s->fifo);
     *s->curr_depth = fill;
     *s->empty = fill == 0;
     if (!want)
         return;
-    if (hm_stream_read(&s->fifo, vals, NULL) != 0) {
+    if (halstream_read(&s->fifo, vals, NULL) != 0) {
         (*s->underruns)++;
         return;
     }
     for (int i = 0; i < s->npins; i++)
-        write_pin(s, i, &vals[i]);
-}
-
-static int count_strings(char **a, int max)
-{
-    int n = 0;
-    while (n < max && a[n] != NULL && a[n][0] != '\0')
-        n++;
-    return n;
+        halstream_to_pin(s->types[i], s->pins[i], &vals[i]);
 }
 
 static int init_channel(int n, const hal_type_t *types, int npins)
@@ -176,7 +135,7 @@ static int init_channel(int n, const hal_type_t *types, int npins)
         if (r < 0)
             return r;
     }
-    r = hm_stream_create(&s->fifo, "streamer", n, depth[n], npins, types, err, sizeof(err));
+    r = halstream_create(&s->fifo, "streamer", n, depth[n], npins, types, err, sizeof(err));
     if (r < 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "STREAMER: ERROR: channel %d: %s\n", n, err);
         return r;
@@ -189,50 +148,20 @@ static void destroy_channels(void)
 {
     for (int i = 0; i < MAX_CHAN; i++) {
         if (chans[i] != NULL)
-            hm_stream_destroy(&chans[i]->fifo);
+            halstream_destroy(&chans[i]->fifo);
         chans[i] = NULL;
     }
 }
 
 int rtapi_app_main(void)
 {
-    hal_type_t types[MAX_CHAN][HM_STREAM_MAX_PINS];
+    hal_type_t types[MAX_CHAN][HALSTREAM_MAX_PINS];
     int npins[MAX_CHAN];
-    char err[256];
 
-    int nchan = count_strings(cfg, MAX_CHAN);
-    if (nchan == 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "STREAMER: ERROR: no channels specified (cfg= missing)\n");
-        return -EINVAL;
-    }
-    for (int n = nchan; n < MAX_CHAN; n++) {
-        if (cfg[n] != NULL && cfg[n][0] != '\0') {
-            rtapi_print_msg(RTAPI_MSG_ERR, "STREAMER: ERROR: cfg string %d is empty\n", nchan);
-            return -EINVAL;
-        }
-        if (depth[n] != 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR,
-                            "STREAMER: ERROR: depth given for channel %d but only %d cfg "
-                            "string(s)\n",
-                            n, nchan);
-            return -EINVAL;
-        }
-    }
-    for (int n = 0; n < nchan; n++) {
-        if (depth[n] <= 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR,
-                            "STREAMER: ERROR: channel %d (cfg=%s): depth missing or not "
-                            "positive (%d)\n",
-                            n, cfg[n], depth[n]);
-            return -EINVAL;
-        }
-        npins[n] = hm_stream_parse_cfg(cfg[n], types[n], err, sizeof(err));
-        if (npins[n] < 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR, "STREAMER: ERROR: channel %d: bad cfg '%s': %s\n", n,
-                            cfg[n], err);
-            return -EINVAL;
-        }
-    }
+    /* Validate everything before creating anything. */
+    int nchan = halstream_check_params("STREAMER", cfg, depth, MAX_CHAN, types, npins);
+    if (nchan < 0)
+        return nchan;
     comp_id = hal_init("streamer");
     if (comp_id < 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "STREAMER: ERROR: hal_init() failed\n");

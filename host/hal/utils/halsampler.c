@@ -28,7 +28,7 @@
 #include <unistd.h>
 
 #include "hal.h"
-#include "hm_stream.h"
+#include "halstream.h"
 
 static volatile sig_atomic_t stop_requested;
 
@@ -49,7 +49,7 @@ static int parse_int(const char *s, long min, long max, long *out)
     return 0;
 }
 
-static void print_value(FILE *f, hal_type_t t, const hm_stream_value_t *v)
+static void print_value(FILE *f, hal_type_t t, const halstream_value_t *v)
 {
     switch (t) {
     case HAL_BIT:
@@ -110,7 +110,7 @@ int main(int argc, char **argv)
                 fprintf(stderr, "ERROR: unknown option '%s'\n", a + 1);
                 return 1;
             }
-            if (opt == 'c' && parse_int(val, 0, HM_STREAM_MAX_CHAN - 1, &chan) != 0) {
+            if (opt == 'c' && parse_int(val, 0, HALSTREAM_MAX_CHAN - 1, &chan) != 0) {
                 fprintf(stderr, "ERROR: invalid channel number '%s'\n", val);
                 return 1;
             }
@@ -155,8 +155,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "ERROR: hal_init() failed: %d\n", comp_id);
         return 1;
     }
-    hm_stream_t fifo;
-    int r = hm_stream_attach(&fifo, "sampler", (int)chan, err, sizeof(err));
+    halstream_t fifo;
+    int r = halstream_attach(&fifo, "sampler", (int)chan, err, sizeof(err));
     if (r < 0) {
         fprintf(stderr, "halsampler: ERROR: hal_stream_attach: %s\n", err);
         hal_exit(comp_id);
@@ -172,14 +172,14 @@ int main(int argc, char **argv)
     /* Poll: fast under the simulated clock, where the realtime side waits
      * for us; 1 ms on the wall clock. */
     long poll_ns = rtapi_is_simclock() ? 50000 : 1000000;
-    int npins = hm_stream_pin_count(&fifo);
-    hm_stream_value_t vals[HM_STREAM_MAX_PINS];
+    int npins = halstream_pin_count(&fifo);
+    halstream_value_t vals[HALSTREAM_MAX_PINS];
     rtapi_u32 expected = 0;
     int status = 1;
     while (!stop_requested) {
         rtapi_u32 num;
-        if (hm_stream_read(&fifo, vals, &num) != 0) {
-            if (hm_stream_closed(&fifo)) {
+        if (halstream_read(&fifo, vals, &num) != 0) {
+            if (halstream_closed(&fifo)) {
                 fprintf(stderr, "halsampler: ERROR: sampler channel %ld was unloaded\n", chan);
                 break;
             }
@@ -193,14 +193,14 @@ int main(int argc, char **argv)
         if (tag)
             fprintf(out, "%lu ", (unsigned long)num);
         for (int i = 0; i < npins; i++)
-            print_value(out, hm_stream_pin_type(&fifo, i), &vals[i]);
+            print_value(out, halstream_pin_type(&fifo, i), &vals[i]);
         fputc('\n', out);
         if (count > 0 && --count == 0) {
             status = 0;
             break;
         }
     }
-    hm_stream_detach(&fifo);
+    halstream_detach(&fifo);
     if (fflush(out) != 0 || ferror(out)) {
         fprintf(stderr, "halsampler: ERROR: writing output failed: %s\n", strerror(errno));
         status = 1;

@@ -31,7 +31,7 @@
 #include <unistd.h>
 
 #include "hal.h"
-#include "hm_stream.h"
+#include "halstream.h"
 
 #define LINE_MAX_LEN 4096
 
@@ -61,18 +61,18 @@ static void nap(long ns)
 }
 
 /* Parse one line into vals; returns NULL or the reason, with *field set. */
-static const char *parse_line(const char *line, const hm_stream_t *fifo, hm_stream_value_t *vals,
+static const char *parse_line(const char *line, const halstream_t *fifo, halstream_value_t *vals,
                               int *field)
 {
     const char *cp = line;
-    int npins = hm_stream_pin_count(fifo);
+    int npins = halstream_pin_count(fifo);
     for (int n = 0; n < npins; n++) {
         char *end = NULL;
         *field = n;
         while (isspace((unsigned char)*cp))
             cp++;
         memset(&vals[n], 0, sizeof(vals[n]));
-        switch (hm_stream_pin_type(fifo, n)) {
+        switch (halstream_pin_type(fifo, n)) {
         case HAL_BIT:
             if (*cp != '0' && *cp != '1')
                 return "bit value not 0 or 1";
@@ -130,7 +130,7 @@ int main(int argc, char **argv)
                 fprintf(stderr, "ERROR: option '%c' needs a value\n", opt);
                 return 1;
             }
-            if (opt == 'c' && parse_int(val, 0, HM_STREAM_MAX_CHAN - 1, &chan) != 0) {
+            if (opt == 'c' && parse_int(val, 0, HALSTREAM_MAX_CHAN - 1, &chan) != 0) {
                 fprintf(stderr, "ERROR: invalid channel number '%s'\n", val);
                 return 1;
             }
@@ -169,8 +169,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "ERROR: hal_init() failed: %d\n", comp_id);
         return 1;
     }
-    hm_stream_t fifo;
-    int r = hm_stream_attach(&fifo, "streamer", (int)chan, err, sizeof(err));
+    halstream_t fifo;
+    int r = halstream_attach(&fifo, "streamer", (int)chan, err, sizeof(err));
     if (r < 0) {
         fprintf(stderr, "halstreamer: ERROR: hal_stream_attach: %s\n", err);
         hal_exit(comp_id);
@@ -184,7 +184,7 @@ int main(int argc, char **argv)
     hal_ready(comp_id);
 
     long poll_ns = rtapi_is_simclock() ? 50000 : 1000000;
-    hm_stream_value_t vals[HM_STREAM_MAX_PINS];
+    halstream_value_t vals[HALSTREAM_MAX_PINS];
     char line[LINE_MAX_LEN];
     int lineno = -1;
     int status = 0;
@@ -200,10 +200,10 @@ int main(int argc, char **argv)
             fprintf(stderr, "line %d, field %d: %s, skipping the line\n", lineno, field, why);
             continue;
         }
-        while (hm_stream_write(&fifo, vals, 0) != 0) {
+        while (halstream_write(&fifo, vals, 0) != 0) {
             if (stop_requested)
                 break;
-            if (hm_stream_closed(&fifo)) {
+            if (halstream_closed(&fifo)) {
                 fprintf(stderr, "halstreamer: ERROR: streamer channel %ld was unloaded\n", chan);
                 stop_requested = 1;
                 break;
@@ -217,7 +217,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "halstreamer: ERROR: reading input failed: %s\n", strerror(errno));
         status = 1;
     }
-    hm_stream_detach(&fifo);
+    halstream_detach(&fifo);
     if (in != stdin)
         fclose(in);
     hal_exit(comp_id);

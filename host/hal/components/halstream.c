@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
- * hm_stream.c - shared-memory FIFO of sampler/streamer.  See hm_stream.h.
+ * halstream.c - shared-memory FIFO of sampler/streamer.  See halstream.h.
  */
 #define _GNU_SOURCE
-#include "hm_stream.h"
+#include "halstream.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -17,22 +17,22 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define HM_STREAM_MAGIC 0x484d5354u /* "HMST" */
-#define HM_STREAM_VERSION 1u
+#define HALSTREAM_MAGIC 0x484d5354u /* "HMST" */
+#define HALSTREAM_VERSION 1u
 
-struct hm_stream_shm {
+struct halstream_shm {
     uint32_t magic;
     uint32_t version;
     int32_t depth;
     int32_t npins;
-    int32_t types[HM_STREAM_MAX_PINS];
+    int32_t types[HALSTREAM_MAX_PINS];
     _Atomic uint32_t in;  /* written by the producer only */
     _Atomic uint32_t out; /* written by the consumer only */
     _Atomic int32_t peer_pid;
     _Atomic int32_t closed;
     /* records follow: depth * (npins + 1) values, the last being the
      * sample number */
-    hm_stream_value_t data[];
+    halstream_value_t data[];
 };
 
 static size_t record_len(int npins)
@@ -42,10 +42,10 @@ static size_t record_len(int npins)
 
 static size_t shm_bytes(int depth, int npins)
 {
-    return sizeof(hm_stream_shm_t) + (size_t)depth * record_len(npins) * sizeof(hm_stream_value_t);
+    return sizeof(halstream_shm_t) + (size_t)depth * record_len(npins) * sizeof(halstream_value_t);
 }
 
-char hm_stream_type_char(hal_type_t t)
+char halstream_type_char(hal_type_t t)
 {
     switch (t) {
     case HAL_BIT:
@@ -65,7 +65,7 @@ char hm_stream_type_char(hal_type_t t)
     }
 }
 
-int hm_stream_parse_cfg(const char *cfg, hal_type_t *types, char *err, size_t errlen)
+int halstream_parse_cfg(const char *cfg, hal_type_t *types, char *err, size_t errlen)
 {
     int n = 0;
     if (cfg == NULL || cfg[0] == '\0') {
@@ -98,8 +98,8 @@ int hm_stream_parse_cfg(const char *cfg, hal_type_t *types, char *err, size_t er
                      isprint((unsigned char)*c) ? *c : '?', (int)(c - cfg) + 1);
             return -EINVAL;
         }
-        if (n == HM_STREAM_MAX_PINS) {
-            snprintf(err, errlen, "more than %d items", HM_STREAM_MAX_PINS);
+        if (n == HALSTREAM_MAX_PINS) {
+            snprintf(err, errlen, "more than %d items", HALSTREAM_MAX_PINS);
             return -EINVAL;
         }
         types[n++] = t;
@@ -107,7 +107,7 @@ int hm_stream_parse_cfg(const char *cfg, hal_type_t *types, char *err, size_t er
     return n;
 }
 
-void hm_stream_shm_name(char *buf, size_t len, const char *kind, int chan)
+void halstream_shm_name(char *buf, size_t len, const char *kind, int chan)
 {
     /* Same instance naming and sanitising as libhal's segment, so a session
      * (HAL_INSTANCE) owns every object it creates. */
@@ -122,11 +122,11 @@ void hm_stream_shm_name(char *buf, size_t len, const char *kind, int chan)
     snprintf(buf, len, "/hm2hal-%u-%s.%s.%d", (unsigned)getuid(), clean, kind, chan);
 }
 
-int hm_stream_create(hm_stream_t *s, const char *kind, int chan, int depth, int npins,
+int halstream_create(halstream_t *s, const char *kind, int chan, int depth, int npins,
                      const hal_type_t *types, char *err, size_t errlen)
 {
     memset(s, 0, sizeof(*s));
-    if (depth <= 0 || npins <= 0 || npins > HM_STREAM_MAX_PINS) {
+    if (depth <= 0 || npins <= 0 || npins > HALSTREAM_MAX_PINS) {
         snprintf(err, errlen, "bad depth %d or pin count %d", depth, npins);
         return -EINVAL;
     }
@@ -136,7 +136,7 @@ int hm_stream_create(hm_stream_t *s, const char *kind, int chan, int depth, int 
         snprintf(err, errlen, "depth %d too large (at most %d)", depth, 1 << 24);
         return -EINVAL;
     }
-    hm_stream_shm_name(s->name, sizeof(s->name), kind, chan);
+    halstream_shm_name(s->name, sizeof(s->name), kind, chan);
     size_t size = shm_bytes(depth, npins);
     /* A leftover object of a crashed session with the same instance is
      * ours to replace: the instance name is the session's namespace. */
@@ -167,7 +167,7 @@ int hm_stream_create(hm_stream_t *s, const char *kind, int chan, int depth, int 
     s->owner = 1;
     s->depth = depth;
     s->npins = npins;
-    hm_stream_shm_t *h = s->shm;
+    halstream_shm_t *h = s->shm;
     h->depth = depth;
     h->npins = npins;
     for (int i = 0; i < npins; i++)
@@ -176,13 +176,13 @@ int hm_stream_create(hm_stream_t *s, const char *kind, int chan, int depth, int 
     atomic_store(&h->out, 0);
     atomic_store(&h->peer_pid, 0);
     atomic_store(&h->closed, 0);
-    h->version = HM_STREAM_VERSION;
+    h->version = HALSTREAM_VERSION;
     atomic_thread_fence(memory_order_release);
-    h->magic = HM_STREAM_MAGIC; /* last: a peer only trusts a complete header */
+    h->magic = HALSTREAM_MAGIC; /* last: a peer only trusts a complete header */
     return 0;
 }
 
-void hm_stream_destroy(hm_stream_t *s)
+void halstream_destroy(halstream_t *s)
 {
     if (s->shm == NULL)
         return;
@@ -215,10 +215,10 @@ static int pid_alive(pid_t pid)
     return 1;
 }
 
-int hm_stream_attach(hm_stream_t *s, const char *kind, int chan, char *err, size_t errlen)
+int halstream_attach(halstream_t *s, const char *kind, int chan, char *err, size_t errlen)
 {
     memset(s, 0, sizeof(*s));
-    hm_stream_shm_name(s->name, sizeof(s->name), kind, chan);
+    halstream_shm_name(s->name, sizeof(s->name), kind, chan);
     int fd = shm_open(s->name, O_RDWR, 0600);
     if (fd < 0) {
         int e = errno;
@@ -230,7 +230,7 @@ int hm_stream_attach(hm_stream_t *s, const char *kind, int chan, char *err, size
         return -e;
     }
     struct stat st;
-    if (fstat(fd, &st) != 0 || (size_t)st.st_size < sizeof(hm_stream_shm_t)) {
+    if (fstat(fd, &st) != 0 || (size_t)st.st_size < sizeof(halstream_shm_t)) {
         close(fd);
         snprintf(err, errlen, "shared memory %s is truncated", s->name);
         return -EPROTO;
@@ -242,9 +242,9 @@ int hm_stream_attach(hm_stream_t *s, const char *kind, int chan, char *err, size
         snprintf(err, errlen, "cannot map shared memory %s: %s", s->name, strerror(e));
         return -e;
     }
-    hm_stream_shm_t *h = p;
-    if (h->magic != HM_STREAM_MAGIC || h->version != HM_STREAM_VERSION || h->depth <= 0 ||
-        h->npins <= 0 || h->npins > HM_STREAM_MAX_PINS ||
+    halstream_shm_t *h = p;
+    if (h->magic != HALSTREAM_MAGIC || h->version != HALSTREAM_VERSION || h->depth <= 0 ||
+        h->npins <= 0 || h->npins > HALSTREAM_MAX_PINS ||
         shm_bytes(h->depth, h->npins) > (size_t)st.st_size) {
         munmap(p, (size_t)st.st_size);
         snprintf(err, errlen, "shared memory %s is not a %s FIFO (bad header)", s->name, kind);
@@ -270,7 +270,7 @@ int hm_stream_attach(hm_stream_t *s, const char *kind, int chan, char *err, size
     return 0;
 }
 
-void hm_stream_detach(hm_stream_t *s)
+void halstream_detach(halstream_t *s)
 {
     if (s->shm == NULL)
         return;
@@ -280,34 +280,34 @@ void hm_stream_detach(hm_stream_t *s)
     s->shm = NULL;
 }
 
-int hm_stream_pin_count(const hm_stream_t *s)
+int halstream_pin_count(const halstream_t *s)
 {
     return s->npins;
 }
 
-hal_type_t hm_stream_pin_type(const hm_stream_t *s, int i)
+hal_type_t halstream_pin_type(const halstream_t *s, int i)
 {
     return (hal_type_t)s->shm->types[i];
 }
 
-int hm_stream_capacity(const hm_stream_t *s)
+int halstream_capacity(const halstream_t *s)
 {
     return s->depth;
 }
 
-int hm_stream_fill(const hm_stream_t *s)
+int halstream_fill(const halstream_t *s)
 {
     uint32_t in = atomic_load_explicit(&s->shm->in, memory_order_acquire);
     uint32_t out = atomic_load_explicit(&s->shm->out, memory_order_acquire);
     return (int)(in - out);
 }
 
-int hm_stream_closed(const hm_stream_t *s)
+int halstream_closed(const halstream_t *s)
 {
     return atomic_load(&s->shm->closed) != 0;
 }
 
-int hm_stream_peer_attached(hm_stream_t *s)
+int halstream_peer_attached(halstream_t *s)
 {
     int32_t pid = atomic_load(&s->shm->peer_pid);
     if (pid == 0)
@@ -318,28 +318,28 @@ int hm_stream_peer_attached(hm_stream_t *s)
     return 0;
 }
 
-int hm_stream_write(hm_stream_t *s, const hm_stream_value_t *vals, rtapi_u32 sampleno)
+int halstream_write(halstream_t *s, const halstream_value_t *vals, rtapi_u32 sampleno)
 {
-    hm_stream_shm_t *h = s->shm;
+    halstream_shm_t *h = s->shm;
     uint32_t in = atomic_load_explicit(&h->in, memory_order_relaxed);
     uint32_t out = atomic_load_explicit(&h->out, memory_order_acquire);
     if ((int)(in - out) >= s->depth)
         return -ENOSPC;
-    hm_stream_value_t *rec = &h->data[(size_t)(in % (uint32_t)s->depth) * record_len(s->npins)];
+    halstream_value_t *rec = &h->data[(size_t)(in % (uint32_t)s->depth) * record_len(s->npins)];
     memcpy(rec, vals, sizeof(*vals) * (size_t)s->npins);
     rec[s->npins].u = sampleno;
     atomic_store_explicit(&h->in, in + 1, memory_order_release);
     return 0;
 }
 
-int hm_stream_read(hm_stream_t *s, hm_stream_value_t *vals, rtapi_u32 *sampleno)
+int halstream_read(halstream_t *s, halstream_value_t *vals, rtapi_u32 *sampleno)
 {
-    hm_stream_shm_t *h = s->shm;
+    halstream_shm_t *h = s->shm;
     uint32_t out = atomic_load_explicit(&h->out, memory_order_relaxed);
     uint32_t in = atomic_load_explicit(&h->in, memory_order_acquire);
     if (in == out)
         return -EAGAIN;
-    const hm_stream_value_t *rec =
+    const halstream_value_t *rec =
         &h->data[(size_t)(out % (uint32_t)s->depth) * record_len(s->npins)];
     memcpy(vals, rec, sizeof(*vals) * (size_t)s->npins);
     if (sampleno != NULL)
