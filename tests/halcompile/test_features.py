@@ -13,11 +13,12 @@ chapter, worked out here by hand/Python, not from running the code."""
 from __future__ import annotations
 
 import re
+import shutil
 from pathlib import Path
 
 import pytest
 
-from hcomp_util import compile_ok, hal_env, halcompile, halrun, pins
+from hcomp_util import COMPS, compile_ok, hal_env, halcompile, halrun, pins
 
 TYPES = r"""
 component types "every type and direction";
@@ -415,42 +416,9 @@ def test_user_install(tmp_path: Path) -> None:
     assert "counted.0.id" in pins(p.stdout)
 
 
-RTEXAMPLE2 = r"""
-/* A realtime module written directly in C, as `halcompile --install rtexample2.c` takes it. */
-#include "rtapi.h"
-#include "rtapi_app.h"
-#include "rtapi_errno.h"
-#include "hal.h"
-
-MODULE_LICENSE("GPL");
-static int comp_id;
-static int value = 42;
-RTAPI_MP_INT(value, "initial value");
-static hal_s32_t **out; /* the pin pointer lives in HAL memory */
-
-int rtapi_app_main(void)
-{
-    comp_id = hal_init("rtexample2");
-    if (comp_id < 0)
-        return comp_id;
-    out = hal_malloc(sizeof(*out));
-    int r = out ? hal_pin_s32_new("rtexample2.out", HAL_OUT, out, comp_id) : -ENOMEM;
-    if (r < 0) {
-        hal_exit(comp_id);
-        return r;
-    }
-    **out = value;
-    hal_ready(comp_id);
-    return 0;
-}
-
-void rtapi_app_exit(void) { hal_exit(comp_id); }
-"""
-
-
 def test_plain_c_file_install(tmp_path: Path) -> None:
     rtlib = tmp_path / "rtlib"
-    (tmp_path / "rtexample2.c").write_text(RTEXAMPLE2)
+    shutil.copy(COMPS / "rtexample2.c", tmp_path)
     env = hal_env()
     env["HALCOMPILE_RTLIB"] = str(rtlib)
     p = halcompile("--install", "rtexample2.c", cwd=tmp_path, env=env)

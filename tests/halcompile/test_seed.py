@@ -14,7 +14,18 @@ from pathlib import Path
 
 import pytest
 
-from hcomp_util import COMPS, DATA, HALRUN, ROOT, compile_ok, hal_env, halrun, normalize, pins
+from hcomp_util import (
+    BUILD,
+    COMPS,
+    DATA,
+    HALRUN,
+    ROOT,
+    compile_ok,
+    hal_env,
+    halrun,
+    normalize,
+    pins,
+)
 
 
 @pytest.fixture(scope="module")
@@ -142,3 +153,49 @@ show pin ddt.0.out
     assert p.returncode == 0, p.stderr
     vals = [float(x) for x in re.findall(r"float OUT +(\S+)  ddt\.0\.out", p.stdout)]
     assert vals == pytest.approx([0.5 / 1e-3, -0.25 / 1e-3])
+
+
+def test_seed_command_lines(tmp_path: Path) -> None:
+    """The seed's command lines, with its program name `comp`: process,
+    compile, install and document rtexample.comp (component "example"),
+    install rtexample2.c, and the same for usrexample.comp; then the
+    installed components load and run."""
+    for f in ("rtexample.comp", "rtexample2.c", "usrexample.comp"):
+        shutil.copy(COMPS / f, tmp_path)
+    env = hal_env()
+    env["HALCOMPILE_RTLIB"] = str(tmp_path / "rtlib")
+    env["HALCOMPILE_BINDIR"] = str(tmp_path / "bin")
+    comp = str(BUILD / "bin" / "comp")
+    for args, made in [
+        (["rtexample.comp"], "example.c"),
+        (["--compile", "rtexample.comp"], "example.so"),
+        (["--install", "rtexample.comp"], "rtlib/example.so"),
+        (["--install", "rtexample2.c"], "rtlib/rtexample2.so"),
+        (["--document", "rtexample.comp"], "example.md"),
+        (["usrexample.comp"], "usrexample.c"),
+        (["--compile", "usrexample.comp"], "usrexample"),
+        (["--install", "usrexample.comp"], "bin/usrexample"),
+        (["--document", "usrexample.comp"], "usrexample.md"),
+    ]:
+        p = subprocess.run([comp, *args], cwd=tmp_path, env=env, capture_output=True, text=True)
+        assert p.returncode == 0, f"comp {' '.join(args)}: {p.stderr}"
+        assert (tmp_path / made).is_file(), f"comp {' '.join(args)} made no {made}"
+    assert "# example(9)" in (tmp_path / "example.md").read_text()
+    hal = f"""
+loadrt example
+loadrt rtexample2
+loadusr -Wn usrexample {tmp_path / 'bin' / 'usrexample'}
+loadrt threads name1=t period1=1000000
+addf example.0 t
+setp example.0.in 1.5
+simrun 1ms
+loadusr -w sleep 0.05
+show pin
+"""
+    p = halrun(hal, tmp_path, hal_env([tmp_path / "rtlib"]), "-S")
+    assert p.returncode == 0, p.stderr
+    v = pins(p.stdout)
+    assert v["example.0.out"] == ("float", "OUT", "3")
+    assert v["rtexample2.out"] == ("s32", "OUT", "42")
+    assert v["usrexample.0.enable"] == ("bit", "IN", "TRUE")
+    assert int(v["usrexample.0.out"][2]) > 0

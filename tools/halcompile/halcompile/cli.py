@@ -27,10 +27,13 @@ from .parser import parse_file
 from .scanner import CompError
 
 
-def load(path: Path) -> Component:
+def load(path: Path, in_tree: bool = False) -> Component:
+    """Parse and check.  Outputs are named after the component (the seed:
+    `comp --compile rtexample.comp` leaves example.so); in the source tree
+    the file must carry the component's name."""
     comp = parse_file(path)
     comp.source = path
-    check(comp, expect_name=stem(path))
+    check(comp, expect_name=stem(path) if in_tree else None)
     return comp
 
 
@@ -133,7 +136,7 @@ def _one(args: argparse.Namespace, f: Path) -> None:
         print(modinfo(load(f)), end="")
         return
     if not (args.compile or args.install):
-        comp = load(f)
+        comp = load(f, in_tree=args.expect_kind is not None)
         if args.expect_kind and args.expect_kind != ("user" if comp.userspace else "rt"):
             if args.kind_stamp is not None:
                 args.kind_stamp.write_text(f"{comp.name} changed kind\n")

@@ -1,0 +1,150 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""halcompile's modes besides --compile/--install (test_features.py): the
+default (preprocess), -o, --document, --print-modinfo, the `comp` name,
+usage errors, and the generated C's #line mapping."""
+
+from __future__ import annotations
+
+import re
+import shutil
+from pathlib import Path
+
+from hcomp_util import BUILD, COMPS, halcompile
+
+
+def test_default_mode_writes_c_in_cwd(tmp_path: Path) -> None:
+    shutil.copy(COMPS / "constant.comp", tmp_path)
+    p = halcompile("constant.comp", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    c = (tmp_path / "constant.c").read_text()
+    assert 'MODULE_LICENSE("GPL");' in c
+    # the C part keeps its .comp line numbers: line 8 is "FUNCTION(_) ..."
+    assert '#line 8 "constant.comp"\nFUNCTION(_) { out = value; }' in c
+    p = halcompile("-o", "sub/x.c", "constant.comp", cwd=tmp_path)
+    assert p.returncode == 0 and (tmp_path / "sub" / "x.c").exists()
+
+
+def test_comp_is_the_same_program(tmp_path: Path) -> None:
+    shutil.copy(COMPS / "constant.comp", tmp_path)
+    assert (BUILD / "bin" / "comp").exists()
+    import subprocess
+
+    p = subprocess.run(
+        [str(BUILD / "bin" / "comp"), "--print-modinfo", "constant.comp"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+    )
+    q = halcompile("--print-modinfo", "constant.comp", cwd=tmp_path)
+    assert p.returncode == 0 and p.stdout == q.stdout
+
+
+def test_usage_errors(tmp_path: Path) -> None:
+    p = halcompile(cwd=tmp_path)
+    assert p.returncode == 2 and "usage: halcompile" in p.stderr
+    p = halcompile("--compile", "--document", "x.comp", cwd=tmp_path)
+    assert p.returncode == 2 and "not allowed with argument" in p.stderr
+    p = halcompile("--user", "x.comp", cwd=tmp_path)
+    assert p.returncode == 2 and "--user goes with --install" in p.stderr
+    p = halcompile("-o", "a.c", "x.comp", "y.comp", cwd=tmp_path)
+    assert p.returncode == 2 and "-o needs exactly one input file" in p.stderr
+    p = halcompile("missing.comp", cwd=tmp_path)
+    assert p.returncode == 1 and "missing.comp: no such file" in p.stderr
+
+
+def test_print_modinfo(tmp_path: Path) -> None:
+    shutil.copy(COMPS / "logic.comp", tmp_path)
+    p = halcompile("--print-modinfo", "logic.comp", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.splitlines() == [
+        "name: logic",
+        "kind: realtime",
+        "prefix: logic",
+        "license: GPL",
+        "description: Machinekit HAL component providing experimental logic functions",
+        "parm: count:number of instances (int)",
+        "parm: names:names of instances (array of charp)",
+        "parm: personality:personality of each instance (array of int)",
+        "pin: in-##[16] bit in",
+        "pin: and bit out",
+        "pin: or bit out",
+        "pin: xor bit out",
+        "function: _ nofp",
+    ]
+
+
+DOCUMENTED = r'''
+component docd "A \\fBdocumented\\fR component";
+pin in float in-#[2] = 1.5 "the inputs";
+pin out float out "the \\fIsum\\fR";
+param rw s32 mode if personality & 1 "only with an odd personality";
+function update nofp "does the work";
+modparam int debug = 0 "more messages";
+option personality;
+description """
+First paragraph.
+.PP
+Second paragraph with \\fBbold\\fR.""";
+notes "A note.";
+examples "loadrt docd count=2";
+see_also "sum2(9)";
+author "A. Person";
+license "GPL";
+;;
+FUNCTION(update) { out = in(0) + in(1); }
+'''
+
+
+def test_document(tmp_path: Path) -> None:
+    """Doc strings are groff (backslash escapes interpreted, so \\fB in the
+    file is the font change \\fB, as the seed says)."""
+    (tmp_path / "docd.comp").write_text(DOCUMENTED)
+    p = halcompile("--document", "docd.comp", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    md = (tmp_path / "docd.md").read_text()
+    assert md.startswith("<!-- SPDX-License-Identifier: GPL-2.0-or-later -->\n# docd(9)\n")
+    sections = re.findall(r"^## (.+)$", md, re.M)
+    assert sections == [
+        "NAME",
+        "SYNOPSIS",
+        "DESCRIPTION",
+        "FUNCTIONS",
+        "PINS",
+        "PARAMETERS",
+        "MODULE PARAMETERS",
+        "EXAMPLES",
+        "NOTES",
+        "AUTHOR",
+        "LICENSE",
+        "SEE ALSO",
+    ]
+    assert "docd - A **documented** component" in md
+    assert "    loadrt docd [count=N | names=name1[,name2...]] [personality=P1[,P2...]]" in md
+    assert "First paragraph.\n\nSecond paragraph with **bold**." in md
+    assert "* **docd.N.update** (no floating point) - does the work" in md
+    assert "* **docd.N.in-0 ... in-1** float IN (default: 1.5) - the inputs" in md
+    assert "* **docd.N.out** float OUT - the *sum*" in md
+    assert "* **docd.N.mode** s32 RW (only if personality & 1) - only with an odd" in md
+    assert "* **debug** (int) (default: 0) - more messages" in md
+    p = halcompile("--document", "-o", "man/x.md", "docd.comp", cwd=tmp_path)
+    assert p.returncode == 0 and (tmp_path / "man" / "x.md").read_text() == md
+
+
+def test_document_userspace(tmp_path: Path) -> None:
+    shutil.copy(COMPS / "rand.comp", tmp_path)
+    p = halcompile("--document", "rand.comp", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    md = (tmp_path / "rand.md").read_text()
+    assert "# rand(1)" in md and "    loadusr rand" in md
+    assert "* **rand.out** float OUT" in md
+
+
+def test_in_pins_are_read_only(tmp_path: Path) -> None:
+    """Assigning to an `in` pin is a compile error at the .comp line (the
+    accessor is an rvalue, as LinuxCNC's)."""
+    (tmp_path / "ro.comp").write_text(
+        'component ro;\npin in float x;\nfunction _;\nlicense "GPL";\n;;\nx = 1;\n'
+    )
+    p = halcompile("--compile", "ro.comp", cwd=tmp_path)
+    assert p.returncode == 1
+    assert re.search(r"ro\.comp:6:\d+: error: lvalue required", p.stderr), p.stderr
