@@ -34,7 +34,7 @@ EXPECT = {
     "loadrt siggen num_chan=17": "SIGGEN: ERROR: invalid number of channels: 17",
     "loadrt siggen num_chan=2 names=x,y": "num_chan= and names= are mutually exclusive",
     "loadrt or2 names=clash": "HAL: ERROR: duplicate variable 'clash.out'",
-    "loadrt and2 names=a,,b": "and2: ERROR: names: entry 2 is empty",
+    "loadrt and2 names=a,,b": "names[1] is invalid (empty string)",
     "loadrt conv_float_s32 names=bad name": "Unknown parameter `name'",
 }
 PINS = ["clash.in", "clash.out", "clash.time"]

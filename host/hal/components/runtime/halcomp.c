@@ -32,11 +32,13 @@ static int count_names(const char *modname, char *const *names, int max_names)
     int n = 0;
     while (n < max_names && names[n] != NULL && names[n][0] != '\0')
         n++;
-    /* names=a,,b: an empty entry in the middle is a typo, not an end marker */
+    /* names=a,,b: an empty entry in the middle is a typo, not an end marker
+     * (LinuxCNC 2.9's message; its realtime modules then make a nameless
+     * instance, its userspace ones refuse) */
+    (void)modname;
     for (int i = n; i < max_names; i++) {
         if (names[i] != NULL && names[i][0] != '\0') {
-            rtapi_print_msg(RTAPI_MSG_ERR, "%s: ERROR: names: entry %d is empty\n", modname,
-                            n + 1);
+            rtapi_print_msg(RTAPI_MSG_ERR, "names[%d] is invalid (empty string)\n", n);
             return -EINVAL;
         }
     }
