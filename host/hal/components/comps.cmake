@@ -21,10 +21,15 @@ set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${HM_COMP_STAMP})
 set(HALCOMPILE_CMD ${CMAKE_COMMAND} -E env PYTHONPATH=${HALCOMPILE_PKG}
     ${Python3_EXECUTABLE} -m halcompile)
 
-# conv_IN_OUT: one component per type pair of LinuxCNC 2.9, from conv.comp.in.
+# conv_IN_OUT: one component per type pair of LinuxCNC 2.9, and the pairs
+# with s64/u64 it lacks, from conv.comp.in.  *_RANGE: the pairs whose input
+# can leave the output's range (out-of-range pin, clamp parameter).
 set(HM_CONV_PAIRS bit:float bit:s32 bit:u32 float:s32 float:u32 s32:bit s32:float s32:u32
-    u32:bit u32:float u32:s32)
-set(HM_CONV_RANGE float:s32 float:u32 s32:bit s32:u32 u32:bit u32:s32)
+    u32:bit u32:float u32:s32
+    bit:s64 bit:u64 float:s64 float:u64 s32:s64 s32:u64 u32:s64 u32:u64 s64:bit s64:float
+    s64:s32 s64:u32 s64:u64 u64:bit u64:float u64:s32 u64:u32 u64:s64)
+set(HM_CONV_RANGE float:s32 float:u32 s32:bit s32:u32 u32:bit u32:s32
+    float:s64 float:u64 s32:u64 s64:bit s64:s32 s64:u32 s64:u64 u64:bit u64:s32 u64:u32 u64:s64)
 set(HM_CONV_DIR ${CMAKE_CURRENT_BINARY_DIR}/conv)
 foreach(pair ${HM_CONV_PAIRS})
     string(REPLACE ":" ";" io ${pair})
