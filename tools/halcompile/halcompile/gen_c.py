@@ -179,7 +179,7 @@ class _Gen:
             self.w(f"    {v.ctype} {v.stars}{v.name}{arr};")
         self.w("    struct __comp_state *_next;", "    int _personality;")
         if "data" in c.options:
-            self.w("    _Alignas(max_align_t) char _data[];")
+            self.w("    _Alignas(8) char _data[]; /* hal_malloc gives 8-byte alignment */")
         self.w(
             "};",
             "static struct __comp_state *__comp_first_inst __attribute__((unused));",
