@@ -2,11 +2,14 @@
 #
 # The one entry point.
 #   make            install missing dependencies, build everything, link bin/ lib/
-#   make test       build, then run every test (ctest, then pytest; pytest's
-#                   summary line is the last line)
+#   make test       build, then run every test (ctest, then pytest); ends with
+#                   the outcome counts per area (scripts/test.sh).  A skip not
+#                   in tests/skips.txt, or an area without tests, fails it.
 #   make demo       the main job (see README)
 #   make bench      speed figures next to their anchors (not part of `make test`)
-#   make lint       Verilator --lint-only -Wall on every HDL file
+#   make lint       HDL through Verilator/Icarus/yosys, Python through black
+#   make memcheck   valgrind memcheck over the C unit tests and a hostmot2 +
+#                   hm2_sim HAL session (non-sanitized build/)
 #   SANITIZE=1      build host code with ASan+UBSan into build-san/ (CI does this)
 #   JOBS=n          parallel build jobs (default: number of cores)
 
@@ -29,7 +32,7 @@ DEFAULT_BUILD := $(filter $(ROOT)/build $(ROOT)/build-san,$(BUILD))
 ENV := source $(ROOT)/scripts/env.sh &&
 PYTEST_ARGS ?=
 
-.PHONY: all deps build test test-host test-py demo bench lint clean distclean fuzz
+.PHONY: all deps build test test-host demo bench lint memcheck clean distclean fuzz
 
 all: build
 
@@ -47,10 +50,9 @@ endif
 	@echo "build: ok ($(BUILD)); put $(ROOT)/bin on PATH or run: . scripts/env.sh"
 
 # C unit tests first, then everything pytest collects (cocotb, HAL regression,
-# end-to-end).  pytest runs last so its summary line ends the output.
+# end-to-end, docs examples), then the per-area counts.
 test: build
-	@$(ENV) cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
-	@$(ENV) cd $(ROOT) && SANITIZE=$(SANITIZE) python -m pytest $(PYTEST_ARGS) tests
+	@$(ENV) SANITIZE=$(SANITIZE) JOBS=$(JOBS) PYTEST_ARGS="$(PYTEST_ARGS)" bash $(ROOT)/scripts/test.sh
 
 test-host: build
 	@$(ENV) cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -63,6 +65,11 @@ bench: build
 
 lint: deps
 	@$(ENV) bash $(ROOT)/scripts/lint.sh
+
+# valgrind needs the non-sanitized build (build/, whatever SANITIZE says).
+memcheck: deps
+	@$(MAKE) --no-print-directory build SANITIZE= BUILD=$(ROOT)/build
+	@$(ENV) HM_BUILD=$(ROOT)/build python $(ROOT)/scripts/memcheck.py --build $(ROOT)/build
 
 fuzz: deps
 	@$(ENV) bash $(ROOT)/scripts/fuzz.sh

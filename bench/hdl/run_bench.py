@@ -39,16 +39,40 @@ def main() -> int:
     out = Path(tempfile.mkstemp(prefix="hm2-bench-", suffix=".jsonl")[1])
     env = {"HM_BENCH_OUT": str(out), "COCOTB_LOG_LEVEL": "WARNING"}
     builds = [
-        ("hm2_stepgen_bank", [hdl("hostmot2", "hm2_stepgen.v"), hdl("hostmot2", "hm2_stepgen_bank.v")],
-         {"NUM": 1, "TABLE_WIDTH": 2}),
-        ("hm2_encoder_bank", [hdl("common", "sync_ff.v"), hdl("hostmot2", "hm2_encoder.v"),
-                              hdl("hostmot2", "hm2_encoder_bank.v")], {"NUM": 1}),
-        ("hm2_pwmgen_bank", [hdl("common", "sync_ff.v"), hdl("hostmot2", "hm2_pwmgen.v"),
-                             hdl("hostmot2", "hm2_pwmgen_bank.v")], {"NUM": 2}),
+        (
+            "hm2_stepgen_bank",
+            [hdl("hostmot2", "hm2_stepgen.v"), hdl("hostmot2", "hm2_stepgen_bank.v")],
+            {"NUM": 1, "TABLE_WIDTH": 2},
+        ),
+        (
+            "hm2_encoder_bank",
+            [
+                hdl("common", "sync_ff.v"),
+                hdl("hostmot2", "hm2_encoder.v"),
+                hdl("hostmot2", "hm2_encoder_bank.v"),
+            ],
+            {"NUM": 1},
+        ),
+        (
+            "hm2_pwmgen_bank",
+            [
+                hdl("common", "sync_ff.v"),
+                hdl("hostmot2", "hm2_pwmgen.v"),
+                hdl("hostmot2", "hm2_pwmgen_bank.v"),
+            ],
+            {"NUM": 2},
+        ),
     ]
     for top, srcs, params in builds:
-        run(sim="verilator", toplevel=top, sources=srcs, test_module="bench_hdl", test_dir=HERE,
-            parameters=params, extra_env=env)
+        run(
+            sim="verilator",
+            toplevel=top,
+            sources=srcs,
+            test_module="bench_hdl",
+            test_dir=HERE,
+            parameters=params,
+            extra_env=env,
+        )
     figs = [json.loads(line) for line in out.read_text().splitlines()]
     out.unlink()
     ok = True
@@ -64,29 +88,53 @@ def main() -> int:
         nonlocal ok
         good = ours >= anchor * 0.999 if higher_better else ours <= anchor * 1.001
         ok &= good
-        print(f"{name:<44}{ours:>12.4g} {unit:<3}{anchor:>12.4g} {unit:<3}  "
-              f"{'>= Mesa' if good else 'BELOW Mesa'}")
+        print(
+            f"{name:<44}{ours:>12.4g} {unit:<3}{anchor:>12.4g} {unit:<3}  "
+            f"{'>= Mesa' if good else 'BELOW Mesa'}"
+        )
 
     for f in figs:
         mhz = f.get("clock_mhz") or f.get("clock_high_mhz")
         if f["kind"] == "step_rate":
             anchor = mhz * 1e6 / ((f["pulsewidth"] + 1) + (f["pulseidle"] + 1))
-            row(f"stepgen max rate @{mhz:.2f} MHz, PW/PI={f['pulsewidth']}/{f['pulseidle']}",
-                f["rate_hz"] / 1e6, anchor / 1e6, "MHz")
+            row(
+                f"stepgen max rate @{mhz:.2f} MHz, PW/PI={f['pulsewidth']}/{f['pulseidle']}",
+                f["rate_hz"] / 1e6,
+                anchor / 1e6,
+                "MHz",
+            )
         elif f["kind"] == "step_resolution":
-            row(f"stepgen timing resolution @{mhz:.2f} MHz", f["resolution_ns"], 1e3 / mhz, "ns",
-                higher_better=False)
+            row(
+                f"stepgen timing resolution @{mhz:.2f} MHz",
+                f["resolution_ns"],
+                1e3 / mhz,
+                "ns",
+                higher_better=False,
+            )
         elif f["kind"] == "encoder_rate":
             anchor = 2 * mhz * 1e6 / f["filter"]
-            row(f"encoder max 4x count rate @{mhz:.2f} MHz, filter {f['filter']}",
-                f["rate_hz"] / 1e6, anchor / 1e6, "MHz")
+            row(
+                f"encoder max 4x count rate @{mhz:.2f} MHz, filter {f['filter']}",
+                f["rate_hz"] / 1e6,
+                anchor / 1e6,
+                "MHz",
+            )
         elif f["kind"] == "pwm":
             anchor = mhz * 1e6 * 65535 / 65536 / (1 << f["bits"])
-            row(f"PWM {f['bits']}-bit max frequency @{mhz:.0f} MHz", f["freq_hz"] / 1e3,
-                anchor / 1e3, "kHz")
+            row(
+                f"PWM {f['bits']}-bit max frequency @{mhz:.0f} MHz",
+                f["freq_hz"] / 1e3,
+                anchor / 1e3,
+                "kHz",
+            )
             if f["bits"] == 9 and f["pdm_slot_ns"]:
-                row(f"PDM slot (min pulse) @{mhz:.0f} MHz", f["pdm_slot_ns"], 1e3 / mhz, "ns",
-                    higher_better=False)
+                row(
+                    f"PDM slot (min pulse) @{mhz:.0f} MHz",
+                    f["pdm_slot_ns"],
+                    1e3 / mhz,
+                    "ns",
+                    higher_better=False,
+                )
     return 0 if ok else 1
 
 

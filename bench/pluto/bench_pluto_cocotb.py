@@ -59,11 +59,20 @@ async def measure(dut: Any) -> None:
                 wc = await drv.write([100] * 4, 0, step_timing_word(0, 0, False))
             rc = await drv.read()
         ws, rs = EppStats.of(wc), EppStats.of(rc)
-        emit(kind="epp", fw=name, profile=profile, write_cycles=ws.cycles, read_cycles=rs.cycles,
-             write_ns=ws.bus_ns, read_ns=rs.bus_ns, timeouts=ws.timeouts + rs.timeouts,
-             ack_min=min(ws.ack_latency_ns + rs.ack_latency_ns),
-             ack_max=max(ws.ack_latency_ns + rs.ack_latency_ns),
-             trace_write=host.trace(wc), trace_read=host.trace(rc))
+        emit(
+            kind="epp",
+            fw=name,
+            profile=profile,
+            write_cycles=ws.cycles,
+            read_cycles=rs.cycles,
+            write_ns=ws.bus_ns,
+            read_ns=rs.bus_ns,
+            timeouts=ws.timeouts + rs.timeouts,
+            ack_min=min(ws.ack_latency_ns + rs.ack_latency_ns),
+            ack_max=max(ws.ack_latency_ns + rs.ack_latency_ns),
+            trace_write=host.trace(wc),
+            trace_read=host.trace(rc),
+        )
         host.stop()
     host = epp_host(dut)
     drv = ServoDriver(host) if servo else StepDriver(host)

@@ -34,20 +34,26 @@ FF = re.compile(r"^SB_DFF")
 
 
 def sources(gen: Path, top: str) -> list[str]:
-    return [str(gen / f"{top}.v"), *map(str, sorted(HM2.glob("hm2_*.v"))),
-            *map(str, sorted((ROOT / "hdl" / "common").glob("*.v")))]
+    return [
+        str(gen / f"{top}.v"),
+        *map(str, sorted(HM2.glob("hm2_*.v"))),
+        *map(str, sorted((ROOT / "hdl" / "common").glob("*.v"))),
+    ]
 
 
-def synth(desc: Path, work: Path, boards: Path | None = None, flatten: bool = False
-          ) -> tuple[dict, str, Path]:
+def synth(
+    desc: Path, work: Path, boards: Path | None = None, flatten: bool = False
+) -> tuple[dict, str, Path]:
     fw = load_firmware(desc, boards)
     gen = work / fw.board.name / fw.name
     write_all(fw, gen)
     top = fw.top_module
     out_json = work / f"{top}.json"
-    script = (f"read_verilog -I{gen} {' '.join(sources(gen, top))}; "
-              f"synth_ice40 -top {top} {'' if flatten else '-noflatten'} -json {out_json}; "
-              "tee -o " + str(work / f"{top}.stat") + " stat")
+    script = (
+        f"read_verilog -I{gen} {' '.join(sources(gen, top))}; "
+        f"synth_ice40 -top {top} {'' if flatten else '-noflatten'} -json {out_json}; "
+        "tee -o " + str(work / f"{top}.stat") + " stat"
+    )
     r = subprocess.run(["yosys", "-q", "-p", script], capture_output=True, text=True)
     if r.returncode:
         raise SystemExit(f"yosys failed on {top}:\n{r.stdout[-3000:]}{r.stderr[-3000:]}")
@@ -120,9 +126,23 @@ def fmax_slice(work: Path) -> None:
     desc.parent.mkdir(parents=True, exist_ok=True)
     desc.write_text((Path(__file__).parent / "slice.toml").read_text())
     _, top, nl = synth(desc, work, HM2 / "boards", flatten=True)
-    r = subprocess.run(["nextpnr-ice40", "--hx8k", "--package", "ct256", "--json", str(nl),
-                        "--freq", "100", "--seed", "1", "--timing-allow-fail"],
-                       capture_output=True, text=True)
+    r = subprocess.run(
+        [
+            "nextpnr-ice40",
+            "--hx8k",
+            "--package",
+            "ct256",
+            "--json",
+            str(nl),
+            "--freq",
+            "100",
+            "--seed",
+            "1",
+            "--timing-allow-fail",
+        ],
+        capture_output=True,
+        text=True,
+    )
     log = r.stdout + r.stderr
     if r.returncode:
         raise SystemExit(f"nextpnr-ice40 failed:\n{log[-3000:]}")

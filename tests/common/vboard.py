@@ -81,7 +81,9 @@ class VBoardError(Exception):
     """A reply with a negative status (``status`` is -errno)."""
 
     def __init__(self, status: int, message: str, request: int) -> None:
-        super().__init__(f"vboard request 0x{request:02x}: {message} ({errno.errorcode.get(-status, status)})")
+        super().__init__(
+            f"vboard request 0x{request:02x}: {message} ({errno.errorcode.get(-status, status)})"
+        )
         self.status = status
         self.message = message
         self.request = request
@@ -187,10 +189,14 @@ class VBoardClient:
     def call(self, rtype: int, payload: bytes = b"", time_ns: int = 0) -> bytes:
         """Send one request and return the reply payload; VBoardError on status < 0."""
         self.seq = (self.seq + 1) & 0xFFFFFFFF
-        self.sock.sendall(HEADER.pack(REQ_MAGIC, rtype, 0, len(payload), self.seq, time_ns) + payload)
+        self.sock.sendall(
+            HEADER.pack(REQ_MAGIC, rtype, 0, len(payload), self.seq, time_ns) + payload
+        )
         got_type, status, seq, _t, data = self.recv_reply()
         if got_type != rtype or seq != self.seq:
-            raise ConnectionError(f"reply type 0x{got_type:02x} seq {seq} for request 0x{rtype:02x} seq {self.seq}")
+            raise ConnectionError(
+                f"reply type 0x{got_type:02x} seq {seq} for request 0x{rtype:02x} seq {self.seq}"
+            )
         if status < 0:
             raise VBoardError(status, data.decode("utf-8", "replace"), rtype)
         return data
@@ -198,7 +204,9 @@ class VBoardClient:
     # -- requests ---------------------------------------------------------
     def hello(self, time_ns: int = 0) -> Hello:
         f = _HELLO.unpack(self.call(HELLO, b"", time_ns))
-        return Hello(f[0], f[1], f[2], f[3], f[4], f[5], bool(f[6]), _text(f[8]), _text(f[9]), _text(f[10]))
+        return Hello(
+            f[0], f[1], f[2], f[3], f[4], f[5], bool(f[6]), _text(f[8]), _text(f[9]), _text(f[10])
+        )
 
     def read_bursts(self, xfers: Sequence[tuple[int, int]], time_ns: int = 0) -> bytes:
         """Read (addr, size-in-bytes) transfers; their data concatenated."""
@@ -225,7 +233,9 @@ class VBoardClient:
         self.write_bursts([(addr, ws)], time_ns)
 
     def config(self, op: int, bitstream: bytes = b"", time_ns: int = 0) -> ConfigStatus:
-        done, init, fw = _CONFIG_STATUS.unpack(self.call(CONFIG, struct.pack("<II", op, 0) + bitstream, time_ns))
+        done, init, fw = _CONFIG_STATUS.unpack(
+            self.call(CONFIG, struct.pack("<II", op, 0) + bitstream, time_ns)
+        )
         return ConfigStatus(done, init, _text(fw))
 
     def program(self, bitstream: bytes) -> ConfigStatus:
@@ -264,10 +274,16 @@ class VBoardClient:
 
     def drive(self, pins: Iterable[tuple[int, int]] | int, mode: int | None = None) -> None:
         """drive(pin, mode) or drive([(pin, mode), ...])."""
-        items = [(pins, mode if mode is not None else DRIVE_RELEASE)] if isinstance(pins, int) else list(pins)
+        items = (
+            [(pins, mode if mode is not None else DRIVE_RELEASE)]
+            if isinstance(pins, int)
+            else list(pins)
+        )
         self.call(DRIVE, b"".join(struct.pack("<II", p, m) for p, m in items))
 
-    def quad(self, a: int, b: int, counts_per_s: float, index: int = NO_PIN, index_every: int = 0) -> None:
+    def quad(
+        self, a: int, b: int, counts_per_s: float, index: int = NO_PIN, index_every: int = 0
+    ) -> None:
         self.call(QUAD, struct.pack("<IIIId", a, b, index, index_every, counts_per_s))
 
     def loop(self, loops: Iterable[tuple[int, int] | tuple[int, int, bool]]) -> None:
@@ -353,7 +369,9 @@ class VBoardProcess:
             elif self.proc.poll() is not None:
                 break
         self.kill()
-        raise RuntimeError(f"vboard did not become ready ({' '.join(self.cmd)}): {self.stderr_text.strip()}")
+        raise RuntimeError(
+            f"vboard did not become ready ({' '.join(self.cmd)}): {self.stderr_text.strip()}"
+        )
 
     def stderr_so_far(self) -> str:
         """What the board wrote to stderr until now."""

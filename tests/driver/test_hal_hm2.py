@@ -22,10 +22,7 @@ from hm2image import build_image, expected_pin_lines  # noqa: E402
 
 HALRUN = bin_path("halrun")
 RTLIB = BUILD / "lib" / "rtlib"
-pytestmark = pytest.mark.skipif(
-    not (HALRUN.exists() and (RTLIB / "hostmot2.so").exists() and (RTLIB / "hm2_test.so").exists()),
-    reason="halrun / hostmot2.so / hm2_test.so not built",
-)
+pytestmark = pytest.mark.requires_build(HALRUN, RTLIB / "hostmot2.so", RTLIB / "hm2_test.so")
 
 # LinuxCNC 2.9 messages for `loadrt hm2_test test_pattern=N` (captured from
 # its halrun; spec §15.1).

@@ -26,10 +26,7 @@ from hm2image import build_image, expected_pin_lines  # noqa: E402
 
 HALRUN = bin_path("halrun")
 RTLIB = BUILD / "lib" / "rtlib"
-pytestmark = pytest.mark.skipif(
-    not (HALRUN.exists() and (RTLIB / "hostmot2.so").exists() and (RTLIB / "hm2_pci.so").exists()),
-    reason="halrun / hostmot2.so / hm2_pci.so not built",
-)
+pytestmark = pytest.mark.requires_build(HALRUN, RTLIB / "hostmot2.so", RTLIB / "hm2_pci.so")
 
 IORESOURCE_IO = 0x100
 IORESOURCE_MEM = 0x200
@@ -301,7 +298,7 @@ def pinout(root: Path, *args: str) -> subprocess.CompletedProcess[str]:
                           env=env)
 
 
-@pytest.mark.skipif(not HM2PINOUT.exists(), reason="hm2pinout not built")
+@pytest.mark.requires_build(HM2PINOUT)
 def test_hm2pinout_pci_source(tmp_path: Path) -> None:
     root = tree(tmp_path)
     add_device(root, "0000:01:00.0", (0x8086, 0x1234, 0x8086, 0x0001, {0: (0x1000, 0)}, 0))
@@ -343,8 +340,7 @@ def test_hm2pinout_pci_source(tmp_path: Path) -> None:
 GENERATED_5I25 = BUILD / "generated" / "5i25" / "7I76x2" / "7I76x2.idrom.hex"
 
 
-@pytest.mark.skipif(not (GENERATED_5I25.exists() and HM2PINOUT.exists()),
-                    reason="hm2gen 5i25 output / hm2pinout not built")
+@pytest.mark.requires_build(GENERATED_5I25, HM2PINOUT)
 def test_generated_5i25_firmware_over_pci(tmp_path: Path) -> None:
     """The IDROM hm2gen generated for our 5i25 firmware, placed in a BAR0
     window (ID block of spec §2 + IDROM at 0x400), loads through hm2_pci

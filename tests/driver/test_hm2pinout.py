@@ -16,7 +16,7 @@ from conftest_paths import BUILD, ROOT, bin_path  # noqa: E402
 from hm2image import build_image, expected_pin_lines  # noqa: E402
 
 TOOL = bin_path("hm2pinout")
-pytestmark = pytest.mark.skipif(not TOOL.exists(), reason=f"{TOOL} not built")
+pytestmark = pytest.mark.requires_build(TOOL)
 
 SEED = """\
 hm2/hm2_5i20.0: 72 I/O Pins used:
@@ -123,8 +123,7 @@ def test_hm2gen_idrom_cross_check(tmp_path: Path, board: str, fw: str, pins: str
     hexfile = BUILD / "generated" / board / fw / f"{fw}.idrom.hex"  # made by the build
     if not hexfile.exists():
         desc = ROOT / "hdl" / "hostmot2" / "firmware" / board / f"{fw}.toml"
-        if not (ROOT / "tools" / "hm2gen").is_dir() or not desc.exists():
-            pytest.skip("hm2gen or its description not present")
+        assert (ROOT / "tools" / "hm2gen").is_dir() and desc.exists(), f"{desc}: hm2gen input missing"
         out = tmp_path / "gen"
         g = subprocess.run([sys.executable, "-m", "hm2gen", "-q", "-o", str(out), str(desc)],
                            cwd=ROOT / "tools", capture_output=True, text=True, timeout=120)

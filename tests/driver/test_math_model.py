@@ -16,7 +16,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from conftest_paths import bin_path  # noqa: E402
 
 DUMP = bin_path("hm2_math_dump")
-pytestmark = pytest.mark.skipif(not DUMP.exists(), reason=f"{DUMP} not built")
+pytestmark = pytest.mark.requires_build(DUMP)
 
 
 @pytest.fixture(scope="module")

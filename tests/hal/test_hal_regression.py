@@ -59,10 +59,9 @@ def _cleanup(env: dict[str, str]) -> None:
     subprocess.run([str(HALRUN), "-U"], env=env, capture_output=True, timeout=30)
 
 
+@pytest.mark.requires_build(HALRUN)
 @pytest.mark.parametrize("case", _cases(), ids=lambda p: p.name)
 def test_hal(case: Path, tmp_path: Path) -> None:
-    if not HALRUN.exists():
-        pytest.skip(f"{HALRUN} not built")
     env = hal_env(f"t{os.getpid()}-{case.name}")
     if (case / "env").exists():
         for line in (case / "env").read_text().splitlines():

@@ -24,10 +24,7 @@ BUILD = Path(os.environ.get("HM_BUILD", ROOT / "build"))
 HALRUN = BUILD / "bin" / "halrun"
 PYDIR = BUILD / "lib" / "python"
 
-pytestmark = pytest.mark.skipif(
-    not HALRUN.exists() or not (PYDIR / "hal.py").exists(),
-    reason=f"our halrun or the hal module is not built in {BUILD}",
-)
+pytestmark = pytest.mark.requires_build(HALRUN, PYDIR / "hal.py")
 
 
 def _sanitizer_env() -> dict[str, str]:

@@ -38,14 +38,39 @@ FIRMWARES = [
 
 # Spec section 16 board table (typed here independently of the board files).
 BOARDS = {
-    "5i20": dict(name="MESA5I20", size=200, pins=208, ports=3, pw=24, lo=33_333_333, hi=100_000_000,
-                 con=["P2", "P3", "P4"]),
-    "7i43": dict(name="MESA7I43", size=400, pins=144, ports=2, pw=24, lo=50_000_000, hi=100_000_000,
-                 con=["P4", "P3"]),
-    "5i25": dict(name="MESA5I25", size=9, pins=144, ports=2, pw=17, lo=33_333_333, hi=200_000_000,
-                 con=["P3", "P2"]),
+    "5i20": dict(
+        name="MESA5I20",
+        size=200,
+        pins=208,
+        ports=3,
+        pw=24,
+        lo=33_333_333,
+        hi=100_000_000,
+        con=["P2", "P3", "P4"],
+    ),
+    "7i43": dict(
+        name="MESA7I43",
+        size=400,
+        pins=144,
+        ports=2,
+        pw=24,
+        lo=50_000_000,
+        hi=100_000_000,
+        con=["P4", "P3"],
+    ),
+    "5i25": dict(
+        name="MESA5I25",
+        size=9,
+        pins=144,
+        ports=2,
+        pw=17,
+        lo=33_333_333,
+        hi=200_000_000,
+        con=["P3", "P2"],
+    ),
 }
 DB25 = [1, 14, 2, 15, 3, 16, 4, 17, 5, 6, 7, 8, 9, 10, 11, 12, 13]
+
 
 def docs_top(board: str, name: str) -> str:
     return f"hm2_{board}_{name}".lower()
@@ -58,8 +83,12 @@ def fw_path(board: str, name: str) -> Path:
 @pytest.fixture(scope="module")
 def generated(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, str], dict]:
     out = tmp_path_factory.mktemp("gen")
-    r = subprocess.run([sys.executable, "-m", "hm2gen", "--all", str(HM2), "-o", str(out)],
-                       cwd=ROOT / "tools", capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "hm2gen", "--all", str(HM2), "-o", str(out)],
+        cwd=ROOT / "tools",
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
     docs = {}
     for board, name, _, _ in FIRMWARES:
@@ -84,11 +113,18 @@ def test_idrom_matches_stock_csv(generated, board, name, stem, omitted) -> None:
     # header (type 2: PD offset 0x200)
     assert words[0:3] == [2, 0x40, 0x200]
     assert words[3].to_bytes(4, "little") + words[4].to_bytes(4, "little") == b["name"].encode()
-    assert words[5:12] == [b["size"], b["pins"], b["ports"], b["ports"] * b["pw"], b["pw"],
-                           b["lo"], b["hi"]]
+    assert words[5:12] == [
+        b["size"],
+        b["pins"],
+        b["ports"],
+        b["ports"] * b["pw"],
+        b["pw"],
+        b["lo"],
+        b["hi"],
+    ]
     assert words[12:16] == [4, 64, 256, 256]
     # pin descriptors: every CSV row, then zeros
-    pd = words[0x200 // 4:]
+    pd = words[0x200 // 4 :]
     assert len(rows) == b["ports"] * b["pw"]
     for r in rows:
         io = int(r["io_pin"])
@@ -98,21 +134,28 @@ def test_idrom_matches_stock_csv(generated, board, name, stem, omitted) -> None:
         assert (w >> 16) & 0xFF == int(r["sec_unit"]), f"pin {io}: sec unit"
         assert w & 0xFF == int(r["sec_pin"]), f"pin {io}: sec pin"
         assert io // b["pw"] == int(r["port"]) and io % b["pw"] == int(r["port_bit"])
-    assert all(w == 0 for w in pd[len(rows):])
+    assert all(w == 0 for w in pd[len(rows) :])
     # module descriptors: the CSV table minus the documented omissions
     mods = list(csv.DictReader((PINMAPS / f"{stem}.modules.csv").open()))
     expect = []
     for m in mods:
-        w0 = (int(m["instances"]) << 24) | (int(m["clock_tag"]) << 16) | (int(m["version"]) << 8) \
+        w0 = (
+            (int(m["instances"]) << 24)
+            | (int(m["clock_tag"]) << 16)
+            | (int(m["version"]) << 8)
             | int(m["gtag"])
-        w1 = (int(m["strides_hex"], 16) << 24) | (int(m["num_registers"]) << 16) \
+        )
+        w1 = (
+            (int(m["strides_hex"], 16) << 24)
+            | (int(m["num_registers"]) << 16)
             | int(m["base_address_hex"], 16)
+        )
         expect.append((int(m["gtag"]), [w0, w1, int(m["mp_mask_hex"], 16)]))
     published = [w for g, w in expect if g not in omitted]
-    md = words[0x40 // 4: 0x200 // 4]
+    md = words[0x40 // 4 : 0x200 // 4]
     for i, w in enumerate(published):
-        assert md[3 * i: 3 * i + 3] == w, f"MD {i}"
-    assert all(x == 0 for x in md[3 * len(published):]), "MD table not terminated by zeros"
+        assert md[3 * i : 3 * i + 3] == w, f"MD {i}"
+    assert all(x == 0 for x in md[3 * len(published) :]), "MD table not terminated by zeros"
     # the omitted rows are exactly the documented ones, byte-identical in the JSON
     doc = generated[(board, name)]["json"]
     assert {m["gtag"] for m in doc["omitted_modules"]} == omitted
@@ -122,10 +165,30 @@ def test_idrom_matches_stock_csv(generated, board, name, stem, omitted) -> None:
 
 def test_spec_worked_md_example(generated) -> None:
     """spec section 4: SVST8_4 on a 5I20."""
-    md = generated[("5i20", "SVST8_4")]["hex"][16:16 + 21]
-    assert md == [0x01010002, 0x00030C00, 0, 0x03010003, 0x00051000, 0x1F,
-                  0x08010204, 0x00053000, 3, 0x08020006, 0x00054000, 3,
-                  0x04010205, 0x000A2000, 0x1FF, 0x01010080, 0x00010200, 0, 0, 0, 0]
+    md = generated[("5i20", "SVST8_4")]["hex"][16 : 16 + 21]
+    assert md == [
+        0x01010002,
+        0x00030C00,
+        0,
+        0x03010003,
+        0x00051000,
+        0x1F,
+        0x08010204,
+        0x00053000,
+        3,
+        0x08020006,
+        0x00054000,
+        3,
+        0x04010205,
+        0x000A2000,
+        0x1FF,
+        0x01010080,
+        0x00010200,
+        0,
+        0,
+        0,
+        0,
+    ]
 
 
 def test_seed_dmesg_pins(generated) -> None:
@@ -133,9 +196,16 @@ def test_seed_dmesg_pins(generated) -> None:
     connector pin, module, unit and signal in our SVST8_4."""
     pins = generated[("5i20", "SVST8_4")]["json"]["pins"]
     names = {"Encoder": "Encoder", "PWMGen": "PWMGen", "StepGen": "StepGen"}
-    sig = {"B": "B", "A": "A", "Index": "Index", "Out0 (PWM or Up)": "Out0",
-           "Out1 (Dir or Down)": "Out1", "Not-Enable": "NotEnable", "Step": "Step",
-           "Direction": "Direction"}
+    sig = {
+        "B": "B",
+        "A": "A",
+        "Index": "Index",
+        "Out0 (PWM or Up)": "Out0",
+        "Out1 (Dir or Down)": "Out1",
+        "Not-Enable": "NotEnable",
+        "Step": "Step",
+        "Direction": "Direction",
+    }
     pat = re.compile(r"IO Pin (\d{3}) \((P\d-\d\d)\): (\w+) #(\d+), pin (.+?) \((Input|Output)\)")
     seen = 0
     for line in SEED.read_text().splitlines():
@@ -183,16 +253,22 @@ def test_outputs_agree(generated, board, name, stem, omitted) -> None:
         assert (p["alt_src"] > 0) == routed, p
     # the top's port list is what the JSON tells the virtual board
     ports = re.findall(r"^\s+(input|output)\s+wire\s+(?:\[(\d+):0\])?\s*(\w+)", g["top"], re.M)
-    got = [{"name": n, "dir": "in" if d == "input" else "out", "width": int(w) + 1 if w else 1}
-           for d, w, n in ports]
+    got = [
+        {"name": n, "dir": "in" if d == "input" else "out", "width": int(w) + 1 if w else 1}
+        for d, w, n in ports
+    ]
     assert got == [{k: p[k] for k in ("name", "dir", "width")} for p in doc["verilog"]["ports"]]
     names = [p["name"] for p in got]
     assert ("lb_addr" in names) == (b is not BOARDS["7i43"]) and ("epp_nwait" in names) == (
-        b is BOARDS["7i43"])
+        b is BOARDS["7i43"]
+    )
     assert got[-4:][0]["width"] == len(doc["pins"])
     # .PIN: one line per pin with connector pin, I/O, module, unit, signal
-    lines = {int(x.split()[1]): x.split() for x in g["pin"].splitlines()
-             if re.match(r"^\s+\d+\s+\d+\s+IOPort", x)}
+    lines = {
+        int(x.split()[1]): x.split()
+        for x in g["pin"].splitlines()
+        if re.match(r"^\s+\d+\s+\d+\s+IOPort", x)
+    }
     assert len(lines) == len(doc["pins"])
     for p in doc["pins"]:
         f = lines[p["io"]]
@@ -263,8 +339,11 @@ def test_good_description_loads(tmp_path: Path) -> None:
 
 
 BAD = [
-    ('"Encoder 0 A", "Encoder 0 B", "Encoder 0 Index",\n   "GPIO", "GPIO"',
-     '"Encoder 0 A", "Encoder 0 A", "Encoder 0 Index",\n   "GPIO", "GPIO"', "pin used twice"),
+    (
+        '"Encoder 0 A", "Encoder 0 B", "Encoder 0 Index",\n   "GPIO", "GPIO"',
+        '"Encoder 0 A", "Encoder 0 A", "Encoder 0 Index",\n   "GPIO", "GPIO"',
+        "pin used twice",
+    ),
     ('"StepGen 0 Step"', '"Frobnicator 0 Step"', "unknown module 'Frobnicator'"),
     ('"StepGen 0 Step"', '"StepGen 0 Steep"', "has no signal 'Steep'"),
     ('"StepGen 0 Step"', '"StepGen 3 Step"', "StepGen unit 3 does not exist"),
@@ -272,12 +351,18 @@ BAD = [
     ('"StepGen 0 Step"', '"StepGen zero Step"', "cannot parse"),
     ('"GPIO", "GPIO"],\n]', '"GPIO", "GPIO", "GPIO"],\n]', "too many pins on port 1"),
     ('"GPIO", "GPIO"],\n]', '"GPIO"],\n]', "lists 16 pins, port width is 17"),
-    ('type = "Watchdog"\ninstances = 1\n', 'type = "Widget"\ninstances = 1\n',
-     "unknown module 'Widget'"),
+    (
+        'type = "Watchdog"\ninstances = 1\n',
+        'type = "Widget"\ninstances = 1\n',
+        "unknown module 'Widget'",
+    ),
     ('type = "Watchdog"\ninstances = 1\n', 'type = "LED"\ninstances = 1\n', "has no Watchdog"),
     ('type = "StepGen"\ninstances = 1', 'type = "StepGen"\ninstances = 65', "out of range 1..64"),
-    ('type = "StepGen"\ninstances = 1', 'type = "StepGen"\ninstances = 1\n[[modules]]\n'
-     'type = "StepGen"\ninstances = 1', "listed twice"),
+    (
+        'type = "StepGen"\ninstances = 1',
+        'type = "StepGen"\ninstances = 1\n[[modules]]\n' 'type = "StepGen"\ninstances = 1',
+        "listed twice",
+    ),
     ('board = "5i25"', 'board = "9z99"', "9z99.toml: file not found"),
     ('board = "5i25"', 'board = "5i25"\nidrom_type = 4', "idrom_type must be 2 or 3"),
     ('board = "5i25"', 'board = "5i25"\ncolour = "red"', "unknown key(s) in firmware: colour"),
@@ -300,8 +385,9 @@ def test_too_many_pins_on_board(tmp_path: Path) -> None:
     boards.mkdir()
     text = (HM2 / "boards" / "5i20.toml").read_text()
     seven = '"A", "B", "C", "D", "E", "F", "G"'
-    (boards / "big.toml").write_text(text.replace('"P2", "P3", "P4"', seven)
-                                     .replace('name = "5i20"', 'name = "big"'))
+    (boards / "big.toml").write_text(
+        text.replace('"P2", "P3", "P4"', seven).replace('name = "5i20"', 'name = "big"')
+    )
     fw = _write(tmp_path, GOOD.replace('board = "5i25"', 'board = "big"'))
     with pytest.raises(DescriptionError, match="too many pins: 168 I/O pins"):
         load_firmware(fw, boards)
@@ -310,17 +396,35 @@ def test_too_many_pins_on_board(tmp_path: Path) -> None:
 def test_cli_error_writes_nothing(tmp_path: Path) -> None:
     good = _write(tmp_path, GOOD)
     bad = tmp_path / "firmware" / "x" / "U.toml"
-    bad.write_text(GOOD.replace('name = "T"', 'name = "U"')
-                   .replace('"StepGen 0 Step"', '"Nope 0 A"'))
+    bad.write_text(
+        GOOD.replace('name = "T"', 'name = "U"').replace('"StepGen 0 Step"', '"Nope 0 A"')
+    )
     out = tmp_path / "out"
-    r = subprocess.run([sys.executable, "-m", "hm2gen", "--boards", str(HM2 / "boards"),
-                        "-o", str(out),
-                        str(good), str(bad)], cwd=ROOT / "tools", capture_output=True, text=True)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "hm2gen",
+            "--boards",
+            str(HM2 / "boards"),
+            "-o",
+            str(out),
+            str(good),
+            str(bad),
+        ],
+        cwd=ROOT / "tools",
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 1
     assert "hm2gen: error:" in r.stderr and "unknown module 'Nope'" in r.stderr
     assert not out.exists(), "an invalid description must leave no output at all"
-    r = subprocess.run([sys.executable, "-m", "hm2gen", "--check", "--boards", str(HM2 / "boards"),
-                        str(good)], cwd=ROOT / "tools", capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "hm2gen", "--check", "--boards", str(HM2 / "boards"), str(good)],
+        cwd=ROOT / "tools",
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0 and "ok" in r.stdout
 
 
@@ -342,8 +446,7 @@ def test_build_outputs_current() -> None:
     import shutil
 
     gen = Path(os.environ.get("HM_BUILD", str(ROOT / "build"))) / "generated"
-    if not gen.is_dir():
-        pytest.skip(f"{gen} not built")
+    assert gen.is_dir(), f"{gen} not built (run `make build`)"
     for board, name, _, _ in FIRMWARES:
         fw = load_firmware(fw_path(board, name))
         d = gen / board / name
@@ -352,15 +455,45 @@ def test_build_outputs_current() -> None:
         assert [int(x, 16) for x in (d / f"{name}.idrom.hex").read_text().split()] == fw.idrom()
         if shutil.which("verilator"):
             top = fw.top_module
-            r = subprocess.run(["verilator", "--lint-only", "-Wall", "-Wno-DECLFILENAME",
-                                "--top-module", top, "-y", str(HM2),
-                                "-y", str(ROOT / "hdl" / "common"),
-                                f"-I{d}", str(d / f"{top}.v")], capture_output=True, text=True)
+            r = subprocess.run(
+                [
+                    "verilator",
+                    "--lint-only",
+                    "-Wall",
+                    "-Wno-DECLFILENAME",
+                    "--top-module",
+                    top,
+                    "-y",
+                    str(HM2),
+                    "-y",
+                    str(ROOT / "hdl" / "common"),
+                    f"-I{d}",
+                    str(d / f"{top}.v"),
+                ],
+                capture_output=True,
+                text=True,
+            )
             assert r.returncode == 0, r.stdout + r.stderr
         if shutil.which("iverilog"):
             top = fw.top_module
-            r = subprocess.run(["iverilog", "-g2005", "-Wall", "-Wno-timescale", "-s", top,
-                                "-y", str(HM2), "-y", str(ROOT / "hdl" / "common"), f"-I{d}",
-                                "-o", os.devnull, str(d / f"{top}.v")],
-                               capture_output=True, text=True)
+            r = subprocess.run(
+                [
+                    "iverilog",
+                    "-g2005",
+                    "-Wall",
+                    "-Wno-timescale",
+                    "-s",
+                    top,
+                    "-y",
+                    str(HM2),
+                    "-y",
+                    str(ROOT / "hdl" / "common"),
+                    f"-I{d}",
+                    "-o",
+                    os.devnull,
+                    str(d / f"{top}.v"),
+                ],
+                capture_output=True,
+                text=True,
+            )
             assert r.returncode == 0 and "warning" not in r.stderr.lower(), r.stderr

@@ -11,11 +11,14 @@ from pathlib import Path
 import pytest
 from vbhelpers import stop_clean, vboard
 
+HERE = Path(__file__).resolve().parent
 
-@pytest.fixture(scope="session", autouse=True)
-def _need_vboard() -> None:
-    if not vboard.vboard_binary().exists():
-        pytest.skip(f"{vboard.vboard_binary()} not built (no Verilator in this build)")
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    # Every test here needs the virtual board: a missing one fails them.
+    for item in items:
+        if HERE in item.path.parents:
+            item.add_marker(pytest.mark.requires_build(vboard.vboard_binary()))
 
 
 @pytest.fixture

@@ -349,8 +349,7 @@ def test_spin_serves_like_the_default(sockdir: Path) -> None:
 def test_the_c_client_talks_to_the_board(svst: VBoardProcess) -> None:
     """bin/vboard-bench speaks through the project's C client (vbclient)."""
     bench = vboard.build_dir() / "bin" / "vboard-bench"
-    if not bench.exists():
-        pytest.skip("vboard-bench not built (no vbclient)")
+    assert bench.exists(), f"{bench} not built (run `make build`)"
     r = subprocess.run([str(bench), svst.socket_path, "servo", "20", "100000"], capture_output=True,
                        text=True, timeout=60)
     assert r.returncode == 0, r.stderr

@@ -25,12 +25,20 @@ def main(argv: list[str] | None = None) -> int:
         "of HostMot2 firmware descriptions.",
     )
     ap.add_argument("firmware", nargs="*", type=Path, help="firmware description(s) (.toml)")
-    ap.add_argument("--all", metavar="ROOT", type=Path,
-                    help="every ROOT/firmware/<board>/<name>.toml (ROOT is hdl/hostmot2)")
-    ap.add_argument("-o", "--out", type=Path,
-                    help="output directory; outputs go to OUT/<board>/<firmware>/")
-    ap.add_argument("--boards", type=Path, help="board description directory "
-                    "(default: ../../boards next to each firmware file)")
+    ap.add_argument(
+        "--all",
+        metavar="ROOT",
+        type=Path,
+        help="every ROOT/firmware/<board>/<name>.toml (ROOT is hdl/hostmot2)",
+    )
+    ap.add_argument(
+        "-o", "--out", type=Path, help="output directory; outputs go to OUT/<board>/<firmware>/"
+    )
+    ap.add_argument(
+        "--boards",
+        type=Path,
+        help="board description directory " "(default: ../../boards next to each firmware file)",
+    )
     ap.add_argument("--check", action="store_true", help="validate only, write nothing")
     ap.add_argument("-q", "--quiet", action="store_true")
     args = ap.parse_args(argv)
@@ -52,8 +60,10 @@ def main(argv: list[str] | None = None) -> int:
         for fw in fws:
             if args.check:
                 if not args.quiet:
-                    print(f"hm2gen: {fw.source}: ok ({fw.board.name} {fw.name}, "
-                          f"{len(fw.md_table)} modules, {fw.board.io_width} pins)")
+                    print(
+                        f"hm2gen: {fw.source}: ok ({fw.board.name} {fw.name}, "
+                        f"{len(fw.md_table)} modules, {fw.board.io_width} pins)"
+                    )
                 continue
             out = write_all(fw, args.out / fw.board.name / fw.name)
             if not args.quiet:

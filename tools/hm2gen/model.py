@@ -117,8 +117,20 @@ class Board:
         return DB25_ORDER[bit]
 
 
-_BOARD_KEYS = {"name", "idrom_name", "bus", "fpga_part", "fpga_size", "fpga_pins", "clock_low",
-               "clock_high", "connectors", "port_width", "leds", "pin_style"}
+_BOARD_KEYS = {
+    "name",
+    "idrom_name",
+    "bus",
+    "fpga_part",
+    "fpga_size",
+    "fpga_pins",
+    "clock_low",
+    "clock_high",
+    "connectors",
+    "port_width",
+    "leds",
+    "pin_style",
+}
 
 
 def load_board(path: Path) -> Board:
@@ -165,8 +177,9 @@ def load_board(path: Path) -> Board:
     if b.clock_high < b.clock_low:
         raise _err(path, "clock_high must not be slower than clock_low")
     if b.io_width > MAX_IOWIDTH:
-        raise _err(path, f"too many pins: {b.io_width} I/O pins, "
-                         f"the firmware maximum is {MAX_IOWIDTH}")
+        raise _err(
+            path, f"too many pins: {b.io_width} I/O pins, " f"the firmware maximum is {MAX_IOWIDTH}"
+        )
     if not 0 <= b.leds <= 32:
         raise _err(path, f"leds {b.leds} out of range 0..32")
     return b
@@ -278,14 +291,27 @@ class Firmware:
         lo, hi = ascii_words(b.idrom_name)
         pd_off = PD_OFFSET[self.idrom_type]
         header = [
-            self.idrom_type, MD_OFFSET, pd_off, lo, hi, b.fpga_size, b.fpga_pins, b.io_ports,
-            b.io_width, b.port_width, b.clock_low, b.clock_high, INSTANCE_STRIDE0,
-            INSTANCE_STRIDE1, REGISTER_STRIDE0, REGISTER_STRIDE1,
+            self.idrom_type,
+            MD_OFFSET,
+            pd_off,
+            lo,
+            hi,
+            b.fpga_size,
+            b.fpga_pins,
+            b.io_ports,
+            b.io_width,
+            b.port_width,
+            b.clock_low,
+            b.clock_high,
+            INSTANCE_STRIDE0,
+            INSTANCE_STRIDE1,
+            REGISTER_STRIDE0,
+            REGISTER_STRIDE1,
         ]
         words[0:16] = header
         w = MD_OFFSET // 4
         for m in self.md_table:
-            words[w:w + 3] = m.md_words()
+            words[w : w + 3] = m.md_words()
             w += 3
         # words[w:w+3] stay 0: the GTag-0 terminator.
         p = pd_off // 4
@@ -332,8 +358,11 @@ def _parse_pin(text: str, src: str, io: int) -> tuple[str, int, str] | None:
         return None
     m = _PIN_RE.match(text)
     if not m:
-        raise _err(src, f"I/O pin {io}: cannot parse {text!r} (expected 'GPIO' or "
-                        "'<Module> <unit> <Signal>', e.g. 'Encoder 0 A')")
+        raise _err(
+            src,
+            f"I/O pin {io}: cannot parse {text!r} (expected 'GPIO' or "
+            "'<Module> <unit> <Signal>', e.g. 'Encoder 0 A')",
+        )
     mod, unit_s, sig = m.groups()
     if mod not in MODULES:
         raise _err(src, f"I/O pin {io}: unknown module {mod!r} (known: {', '.join(MODULES)})")
@@ -384,8 +413,11 @@ def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
         if tname == "IOPort":
             inst = rm.get("instances", board.io_ports)
             if inst != board.io_ports:
-                raise _err(src, f"IOPort instances {inst} must equal the board's "
-                                f"{board.io_ports} connectors")
+                raise _err(
+                    src,
+                    f"IOPort instances {inst} must equal the board's "
+                    f"{board.io_ports} connectors",
+                )
         else:
             inst = _get(rm, "instances", int, src, f"modules[{i}]")
         if not isinstance(inst, int) or isinstance(inst, bool) or not 1 <= inst <= mt.max_instances:
@@ -401,30 +433,45 @@ def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
     md_slots = (PD_OFFSET[idrom_type] - MD_OFFSET) // 12 - 1  # keep a terminator
     n_md = sum(1 for m in modules if m.implemented)
     if n_md > md_slots:
-        raise _err(src, f"too many modules: {n_md} descriptors, IDROM type {idrom_type} "
-                        f"has room for {md_slots}")
+        raise _err(
+            src,
+            f"too many modules: {n_md} descriptors, IDROM type {idrom_type} "
+            f"has room for {md_slots}",
+        )
     counts = {m.mtype.name: m.instances for m in modules}
 
     # ---- pins
     ports = _get(d, "ports", list, src)
     if len(ports) != board.io_ports:
-        raise _err(src, f"{len(ports)} ports given, board {board.name} has {board.io_ports} "
-                        f"connectors ({', '.join(board.connectors)})")
+        raise _err(
+            src,
+            f"{len(ports)} ports given, board {board.name} has {board.io_ports} "
+            f"connectors ({', '.join(board.connectors)})",
+        )
     max_pins = (IDROM_WORDS * 4 - PD_OFFSET[idrom_type]) // 4
     if board.io_width > max_pins:
-        raise _err(src, f"too many pins: {board.io_width} I/O pins do not fit the {max_pins} "
-                        f"pin descriptors of IDROM type {idrom_type}")
+        raise _err(
+            src,
+            f"too many pins: {board.io_width} I/O pins do not fit the {max_pins} "
+            f"pin descriptors of IDROM type {idrom_type}",
+        )
     pins: list[Pin] = []
     used: dict[tuple[str, int, str], int] = {}
     for pi, plist in enumerate(ports):
         if not isinstance(plist, list) or not all(isinstance(s, str) for s in plist):
             raise _err(src, f"ports[{pi}] must be a list of strings")
         if len(plist) > board.port_width:
-            raise _err(src, f"too many pins on port {pi} ({board.connectors[pi]}): "
-                            f"{len(plist)} given, port width is {board.port_width}")
+            raise _err(
+                src,
+                f"too many pins on port {pi} ({board.connectors[pi]}): "
+                f"{len(plist)} given, port width is {board.port_width}",
+            )
         if len(plist) < board.port_width:
-            raise _err(src, f"port {pi} ({board.connectors[pi]}) lists {len(plist)} pins, "
-                            f"port width is {board.port_width} (write 'GPIO' for plain pins)")
+            raise _err(
+                src,
+                f"port {pi} ({board.connectors[pi]}) lists {len(plist)} pins, "
+                f"port width is {board.port_width} (write 'GPIO' for plain pins)",
+            )
         for bit, text in enumerate(plist):
             io = pi * board.port_width + bit
             parsed = _parse_pin(text, src, io)
@@ -436,14 +483,19 @@ def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
             if mod not in counts:
                 raise _err(src, f"I/O pin {io}: module {mod} is not in the module table")
             if unit != GLOBAL_UNIT and unit >= counts[mod]:
-                raise _err(src, f"I/O pin {io}: {mod} unit {unit} does not exist "
-                                f"({counts[mod]} instances)")
+                raise _err(
+                    src,
+                    f"I/O pin {io}: {mod} unit {unit} does not exist " f"({counts[mod]} instances)",
+                )
             if unit == GLOBAL_UNIT and MODULES[mod].implemented:
                 raise _err(src, f"I/O pin {io}: shared ('all') pins are not supported for {mod}")
             key = (mod, unit, sig)
             if key in used:
-                raise _err(src, f"pin used twice: {mod} {unit_text(unit)} {sig} is on I/O pin "
-                                f"{used[key]} and on I/O pin {io}")
+                raise _err(
+                    src,
+                    f"pin used twice: {mod} {unit_text(unit)} {sig} is on I/O pin "
+                    f"{used[key]} and on I/O pin {io}",
+                )
             used[key] = io
             pins.append(Pin(io, pi, bit, con, cpin, mod, unit, sig, MODULES[mod].signals[sig]))
 
@@ -451,8 +503,16 @@ def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
     for p in pins:
         if p.module == "StepGen":
             tw = max(tw, (p.sec_pin & 0x7F))
-    return Firmware(name=name, board=board, idrom_type=idrom_type, modules=modules, pins=pins,
-                    source=src, stepgen_table_width=tw, notes=list(notes))
+    return Firmware(
+        name=name,
+        board=board,
+        idrom_type=idrom_type,
+        modules=modules,
+        pins=pins,
+        source=src,
+        stepgen_table_width=tw,
+        notes=list(notes),
+    )
 
 
 def unit_text(unit: int) -> str:

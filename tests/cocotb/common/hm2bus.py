@@ -29,8 +29,9 @@ class Hm2Bus:
     """Drives ``<prefix>addr/wdata/we/re`` and samples ``<prefix>rdata`` of a
     hm2 module (or the whole core) clocked by ``clk``."""
 
-    def __init__(self, dut: SimHandleBase, clk: SimHandleBase | None = None,
-                 prefix: str = "bus_") -> None:
+    def __init__(
+        self, dut: SimHandleBase, clk: SimHandleBase | None = None, prefix: str = "bus_"
+    ) -> None:
         self.clk = clk if clk is not None else dut.clk
         self.addr = getattr(dut, prefix + "addr")
         self.wdata = getattr(dut, prefix + "wdata")
@@ -98,8 +99,10 @@ class Hm2Bus:
         """A read that must not hit the module: the data must be 0."""
         value = await self.read(addr)
         if value != 0:
-            raise BusError(f"read of {addr:#06x} returned {value:#010x}, expected 0 "
-                           "(unaddressed or write-only register)")
+            raise BusError(
+                f"read of {addr:#06x} returned {value:#010x}, expected 0 "
+                "(unaddressed or write-only register)"
+            )
 
     async def check_hold(self, cycles: int = 3) -> int:
         """The last read data must stay unchanged while no read is issued."""

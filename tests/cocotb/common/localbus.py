@@ -22,8 +22,13 @@ class LocalBusError(AssertionError):
 
 
 class LocalBus:
-    def __init__(self, dut: SimHandleBase, clk: SimHandleBase | None = None, prefix: str = "lb_",
-                 latency: int = 2) -> None:
+    def __init__(
+        self,
+        dut: SimHandleBase,
+        clk: SimHandleBase | None = None,
+        prefix: str = "lb_",
+        latency: int = 2,
+    ) -> None:
         self.clk = clk if clk is not None else dut.clk_low
         self.addr = getattr(dut, prefix + "addr")
         self.wdata = getattr(dut, prefix + "wdata")
@@ -95,12 +100,15 @@ class LocalBus:
                     self.rd.value = 0
                 j = k - self.latency  # read j's data is valid now
                 if j < 0 and int(self.rvalid.value):
-                    raise LocalBusError(f"lb_rvalid set {k} clocks after lb_rd, "
-                                        f"expected {self.latency}")
+                    raise LocalBusError(
+                        f"lb_rvalid set {k} clocks after lb_rd, " f"expected {self.latency}"
+                    )
                 if 0 <= j < n:
                     if not int(self.rvalid.value):
-                        raise LocalBusError(f"read {addr + j * inc:#06x}: lb_rvalid not set "
-                                            f"{self.latency} clocks after lb_rd")
+                        raise LocalBusError(
+                            f"read {addr + j * inc:#06x}: lb_rvalid not set "
+                            f"{self.latency} clocks after lb_rd"
+                        )
                     out.append(int(self.rdata.value))
             await FallingEdge(self.clk)
             self._no_rvalid("one clock after the last read data")

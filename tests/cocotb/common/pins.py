@@ -27,7 +27,6 @@ from cocotb.handle import SimHandleBase
 from cocotb.triggers import Timer, ValueChange
 from cocotb.utils import get_sim_time
 
-
 # --------------------------------------------------------------------------
 # recording
 
@@ -144,8 +143,9 @@ def _clocks(dt: float, period: float) -> int:
     return int(round(dt / period))
 
 
-def check_stepdir(step: Trace, dirn: Trace, period: float, limits: StepLimits,
-                  negative_level: int = 1) -> StepReport:
+def check_stepdir(
+    step: Trace, dirn: Trace, period: float, limits: StepLimits, negative_level: int = 1
+) -> StepReport:
     """Count steps (direction sampled at the rising edge; DIR == negative_level
     counts down) and check every timing rule.  A DIR change and a step edge at
     the same instant count as 0 clocks apart."""
@@ -340,8 +340,14 @@ class QuadSource:
     ``index_level`` is the idle index level (0 unless told otherwise).
     Edges are timed in ns, independent of any FPGA clock."""
 
-    def __init__(self, a: SimHandleBase, b: SimHandleBase, idx: SimHandleBase | None = None,
-                 mask: SimHandleBase | None = None, seed: int = 1) -> None:
+    def __init__(
+        self,
+        a: SimHandleBase,
+        b: SimHandleBase,
+        idx: SimHandleBase | None = None,
+        mask: SimHandleBase | None = None,
+        seed: int = 1,
+    ) -> None:
         self.a, self.b, self.idx, self.mask = a, b, idx, mask
         self.state = 0
         self.position = 0
@@ -369,8 +375,9 @@ class QuadSource:
         self.position += direction
         self._drive()
 
-    async def move(self, counts: int, edge_ns: float, glitch_ns: float = 0.0,
-                   glitch_prob: float = 0.0) -> None:
+    async def move(
+        self, counts: int, edge_ns: float, glitch_ns: float = 0.0, glitch_prob: float = 0.0
+    ) -> None:
         """Move ``counts`` quarter states (sign = direction), one every
         ``edge_ns``.  With ``glitch_prob`` > 0, each interval may carry one
         glitch of ``glitch_ns`` on a random phase (noise the filter must

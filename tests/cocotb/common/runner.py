@@ -27,7 +27,11 @@ SIMULATORS: tuple[str, ...] = ("verilator", "icarus")
 # C++ files fails to compile ("Vtop__pch.h.fast: linker input file not
 # found"); one file per class avoids the precompiled-header path.
 _VERILATOR_ARGS: tuple[str, ...] = (
-    "-Wall", "-Wno-DECLFILENAME", "-Wno-fatal", "--output-split", "0",
+    "-Wall",
+    "-Wno-DECLFILENAME",
+    "-Wno-fatal",
+    "--output-split",
+    "0",
 )
 
 
@@ -81,7 +85,9 @@ def run(
         waves=waves,
         always=False,
     )
-    env = {"PYTHONPATH": os.pathsep.join([str(test_dir), str(ROOT / "tests" / "cocotb"), *sys.path])}
+    env = {
+        "PYTHONPATH": os.pathsep.join([str(test_dir), str(ROOT / "tests" / "cocotb"), *sys.path])
+    }
     env.update(extra_env or {})
     results = runner.test(
         test_module=test_module,
@@ -104,6 +110,10 @@ def _check_results(results_xml: Path) -> None:
     cases = list(tree.iter("testcase"))
     if not cases:
         raise AssertionError(f"cocotb ran no test ({results_xml})")
-    failed = [c.get("name") for c in cases if c.find("failure") is not None or c.find("error") is not None]
+    failed = [
+        c.get("name") for c in cases if c.find("failure") is not None or c.find("error") is not None
+    ]
     if failed:
-        raise AssertionError(f"cocotb tests failed: {', '.join(str(f) for f in failed)} ({results_xml})")
+        raise AssertionError(
+            f"cocotb tests failed: {', '.join(str(f) for f in failed)} ({results_xml})"
+        )

@@ -45,8 +45,14 @@ class EncoderModel:
     qerr_events: int = 0
     index_events: int = 0
 
-    def clock(self, pins: tuple[int, int, int, int], sample: bool, tscount: int,
-              we_count: bool, ccr_write: int | None) -> None:
+    def clock(
+        self,
+        pins: tuple[int, int, int, int],
+        sample: bool,
+        tscount: int,
+        we_count: bool,
+        ccr_write: int | None,
+    ) -> None:
         ctrl = self.ctrl
         fmax = 15 if bit(ctrl, CCR_FILTER) else 3
         was_primed = self.primed
@@ -141,8 +147,14 @@ class EncoderModel:
 
     @property
     def ccr_reg(self) -> int:
-        return ((self.latch << 16) | (self.qerr << 15) | self.ctrl
-                | (self.filt[2] << 2) | (self.filt[1] << 1) | self.filt[0])
+        return (
+            (self.latch << 16)
+            | (self.qerr << 15)
+            | self.ctrl
+            | (self.filt[2] << 2)
+            | (self.filt[1] << 1)
+            | self.filt[0]
+        )
 
 
 class EncoderBankModel:
@@ -168,8 +180,9 @@ class EncoderBankModel:
             return 0
         return {2: self.tsdiv, 3: self.tscount, 4: self.qfilter}.get(reg, 0)
 
-    def clock(self, pins: list[tuple[int, int, int, int]],
-              writes: list[tuple[int, int, int]] = ()) -> None:
+    def clock(
+        self, pins: list[tuple[int, int, int, int]], writes: list[tuple[int, int, int]] = ()
+    ) -> None:
         we_count = [False] * self.num
         ccr: list[int | None] = [None] * self.num
         new_tsdiv, new_qfilter = self.tsdiv, self.qfilter

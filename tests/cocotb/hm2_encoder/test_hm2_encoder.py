@@ -25,9 +25,20 @@ from cocotb.utils import get_sim_time
 from common.hm2bus import Hm2Bus
 from common.pins import QuadSource, VectorLog
 from common.runner import SIMULATORS, hdl, run
-from encoder_model import (CCR_ABGATE, CCR_ABMASKPOL, CCR_CLRIDX, CCR_FILTER, CCR_IDXPOL,
-                           CCR_JUSTONCE, CCR_LATCHIDX, CCR_MASKPOL, CCR_QERR, CCR_UPDOWN,
-                           CCR_USEMASK, EncoderBankModel)
+from encoder_model import (
+    CCR_ABGATE,
+    CCR_ABMASKPOL,
+    CCR_CLRIDX,
+    CCR_FILTER,
+    CCR_IDXPOL,
+    CCR_JUSTONCE,
+    CCR_LATCHIDX,
+    CCR_MASKPOL,
+    CCR_QERR,
+    CCR_UPDOWN,
+    CCR_USEMASK,
+    EncoderBankModel,
+)
 
 BASE = 0x3000
 PERIOD = 30  # ns, 33.33 MHz ClockLow
@@ -121,8 +132,9 @@ class Harness:
             pins = [tuple((level[n] >> i) & 1 for n in range(4)) for i in range(self.num)]
             for reg, inst, v in reads.get(c, []):
                 want = model.read(reg, inst)
-                assert v == want, (f"cycle {c}: read reg {reg} inst {inst} = {v:#010x}, "
-                                   f"model {want:#010x}")
+                assert v == want, (
+                    f"cycle {c}: read reg {reg} inst {inst} = {v:#010x}, " f"model {want:#010x}"
+                )
             model.clock(pins, self.writes.get(c, []))
         return model
 
@@ -232,8 +244,15 @@ async def power_up_with_idle_high_inputs(dut) -> None:
     h.replay(qfilter_reset(dut))
 
 
-async def _moves(h: Harness, inst: int, rng: random.Random, n: int, min_ns: float,
-                 glitch_ns: float = 0.0, glitch_prob: float = 0.0) -> None:
+async def _moves(
+    h: Harness,
+    inst: int,
+    rng: random.Random,
+    n: int,
+    min_ns: float,
+    glitch_ns: float = 0.0,
+    glitch_prob: float = 0.0,
+) -> None:
     for _ in range(n):
         counts = rng.choice([-1, 1]) * rng.randint(1, 40)
         edge = round(rng.uniform(min_ns, 4 * min_ns), 3)
@@ -253,8 +272,10 @@ async def model_random(dut) -> None:
     await h.write(R_CCR, 1, 1 << CCR_FILTER)
     rng = random.Random(5)
     # filter off: 3 samples; on: 15.  Edges well above that, glitches below.
-    tasks = [cocotb.start_soon(_moves(h, 0, rng, 12, 8 * PERIOD, 1.5 * PERIOD, 0.3)),
-             cocotb.start_soon(_moves(h, 1, rng, 8, 20 * PERIOD, 12 * PERIOD, 0.3))]
+    tasks = [
+        cocotb.start_soon(_moves(h, 0, rng, 12, 8 * PERIOD, 1.5 * PERIOD, 0.3)),
+        cocotb.start_soon(_moves(h, 1, rng, 8, 20 * PERIOD, 12 * PERIOD, 0.3)),
+    ]
     while not all(t.done() for t in tasks):
         await h.read(R_COUNT, rng.randrange(h.num))
         await h.read(R_CCR, rng.randrange(h.num))
@@ -266,7 +287,9 @@ async def model_random(dut) -> None:
     h.replay(qfilter_reset(dut))
     for i in range(h.num):
         src = h.src[i].quad
-        assert s16(counts[i]) == src.position, f"instance {i}: count {s16(counts[i])} != {src.position}"
+        assert (
+            s16(counts[i]) == src.position
+        ), f"instance {i}: count {s16(counts[i])} != {src.position}"
         assert not ccrs[i] & (1 << CCR_QERR), f"instance {i}: quadrature error from filtered noise"
     assert h.src[0].quad.glitches > 5 and h.src[1].quad.glitches > 5
 
@@ -370,8 +393,9 @@ async def index_features(dut) -> None:
     assert s16(await h.read(R_COUNT, 0)) == -4  # counter wraps below 0
     # 3. index mask: active-high mask required
     q.idx.value = 0
-    await h.write(R_CCR, 0, (1 << CCR_LATCHIDX) | (1 << CCR_IDXPOL) | (1 << CCR_USEMASK)
-                  | (1 << CCR_MASKPOL))
+    await h.write(
+        R_CCR, 0, (1 << CCR_LATCHIDX) | (1 << CCR_IDXPOL) | (1 << CCR_USEMASK) | (1 << CCR_MASKPOL)
+    )
     await q.index_pulse(300)  # mask low: ignored
     await h.wait(10)
     assert await h.read(R_CCR, 0) & (1 << CCR_LATCHIDX), "index passed a closed mask"
@@ -383,8 +407,15 @@ async def index_features(dut) -> None:
     assert s16(ccr >> 16) == -4 and ccr & (1 << CCR_LATCHIDX)  # not just-once: stays set
     # 4. AB gate: index only while A and B are both high
     await q.move(1, 200)  # -3: state from the -4 position
-    await h.write(R_CCR, 0, (1 << CCR_LATCHIDX) | (1 << CCR_IDXPOL) | (1 << CCR_ABGATE)
-                  | (1 << CCR_ABMASKPOL) | (1 << CCR_JUSTONCE))
+    await h.write(
+        R_CCR,
+        0,
+        (1 << CCR_LATCHIDX)
+        | (1 << CCR_IDXPOL)
+        | (1 << CCR_ABGATE)
+        | (1 << CCR_ABMASKPOL)
+        | (1 << CCR_JUSTONCE),
+    )
     while q.levels() != (1, 1):
         await q.move(1, 200)
     pos_at = q.position
@@ -410,8 +441,9 @@ async def timestamp_and_driver_use(dut) -> None:
     qf = 0xFFF if qf == 1 else qf - 2
     await h.write(R_TSDIV, 0, tsdiv)
     await h.write(R_QFILTER, 0, qf)
-    await h.write(R_CCR, 0, (1 << CCR_FILTER) | (1 << CCR_LATCHIDX) | (1 << CCR_JUSTONCE)
-                  | (1 << CCR_IDXPOL))
+    await h.write(
+        R_CCR, 0, (1 << CCR_FILTER) | (1 << CCR_LATCHIDX) | (1 << CCR_JUSTONCE) | (1 << CCR_IDXPOL)
+    )
     tick_s = (tsdiv + 2) / CLOCK_LOW
     edge_ns = 2000.017  # 500 kcounts/s
     q = h.src[0].quad
@@ -443,8 +475,11 @@ def test_hm2_encoder(sim: str) -> None:
     run(
         sim=sim,
         toplevel="hm2_encoder_bank",
-        sources=[hdl("common", "sync_ff.v"), hdl("hostmot2", "hm2_encoder.v"),
-                 hdl("hostmot2", "hm2_encoder_bank.v")],
+        sources=[
+            hdl("common", "sync_ff.v"),
+            hdl("hostmot2", "hm2_encoder.v"),
+            hdl("hostmot2", "hm2_encoder_bank.v"),
+        ],
         test_module="test_hm2_encoder",
         test_dir=Path(__file__).parent,
         parameters={"NUM": 2, "CLOCK_LOW_HZ": 33333333},

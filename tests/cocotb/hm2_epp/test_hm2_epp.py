@@ -113,9 +113,16 @@ class Target:
 async def setup(dut, timing: EppTiming | None = None) -> tuple[EppHost, Target, EppBridgeModel]:
     cocotb.start_soon(Clock(dut.clk, PERIOD, unit="ns").start())
     dut.rst.value = 1
-    host = EppHost(d_in=dut.epp_d_i, d_out=dut.epp_d_o, d_oe=dut.epp_d_oe,
-                   nwrite=dut.epp_nwrite, ndatastr=dut.epp_ndatastr,
-                   naddrstr=dut.epp_naddrstr, nwait=dut.epp_nwait, timing=timing)
+    host = EppHost(
+        d_in=dut.epp_d_i,
+        d_out=dut.epp_d_o,
+        d_oe=dut.epp_d_oe,
+        nwrite=dut.epp_nwrite,
+        ndatastr=dut.epp_ndatastr,
+        naddrstr=dut.epp_naddrstr,
+        nwait=dut.epp_nwait,
+        timing=timing,
+    )
     host.start()
     tgt = Target(dut)
     await ClockCycles(dut.clk, 4)
@@ -186,8 +193,10 @@ async def epp_driver_transactions(dut) -> None:
     assert not host.timed_out and not host.violations
     st = EppStats.of(host.cycles)
     lat = sorted(st.ack_latency_ns)
-    dut._log.info(f"EPP: {st.cycles} cycles, ack latency {lat[0]:.0f}..{lat[-1]:.0f} ns, "
-                  f"{st.bus_ns / st.cycles:.0f} ns/cycle")
+    dut._log.info(
+        f"EPP: {st.cycles} cycles, ack latency {lat[0]:.0f}..{lat[-1]:.0f} ns, "
+        f"{st.bus_ns / st.cycles:.0f} ns/cycle"
+    )
     assert lat[-1] < 400.0  # at least as fast as the stock firmware's ~400 ns
 
 
@@ -273,6 +282,10 @@ async def epp_pc_pace(dut) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_hm2_epp_bridge(sim: str) -> None:
-    run(sim=sim, toplevel="hm2_epp_bridge",
+    run(
+        sim=sim,
+        toplevel="hm2_epp_bridge",
         sources=[hdl("common", "sync_ff.v"), hdl("hostmot2", "hm2_epp_bridge.v")],
-        test_module="test_hm2_epp", test_dir=Path(__file__).parent)
+        test_module="test_hm2_epp",
+        test_dir=Path(__file__).parent,
+    )

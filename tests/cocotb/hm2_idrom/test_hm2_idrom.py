@@ -79,6 +79,11 @@ async def idrom_write_enable(dut) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_hm2_idrom(sim: str) -> None:
-    run(sim=sim, toplevel="hm2_idrom", sources=[hdl("hostmot2", "hm2_idrom.v")],
+    run(
+        sim=sim,
+        toplevel="hm2_idrom",
+        sources=[hdl("hostmot2", "hm2_idrom.v")],
         parameters={"IDROM": f"8192'h{IMAGE_PARAM:02048x}"},
-        test_module="test_hm2_idrom", test_dir=Path(__file__).parent)
+        test_module="test_hm2_idrom",
+        test_dir=Path(__file__).parent,
+    )

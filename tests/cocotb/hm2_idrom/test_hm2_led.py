@@ -50,6 +50,11 @@ async def led_bits(dut) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_hm2_led(sim: str) -> None:
-    run(sim=sim, toplevel="hm2_led", sources=[hdl("hostmot2", "hm2_led.v")],
-        parameters={"NUM_LEDS": 6}, test_module="test_hm2_led",
-        test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="hm2_led",
+        sources=[hdl("hostmot2", "hm2_led.v")],
+        parameters={"NUM_LEDS": 6},
+        test_module="test_hm2_led",
+        test_dir=Path(__file__).parent,
+    )

@@ -119,8 +119,12 @@ async def ioport_semantics(dut) -> None:
     await check(dut, bus, m, board, 0)
     assert await bus.read(addr(DATA, 0)) == MASK
     # GPIO outputs, then inputs driven from outside
-    for reg, port, val in ((DDR, 0, 0x0F0F), (DATA, 0, 0x1F00F), (DDR, 1, 0x1FFFF),
-                           (DATA, 1, 0x12345)):
+    for reg, port, val in (
+        (DDR, 0, 0x0F0F),
+        (DATA, 0, 0x1F00F),
+        (DDR, 1, 0x1FFFF),
+        (DATA, 1, 0x12345),
+    ):
         await bus.write(addr(reg, port), val)
         m.write(reg, port, val)
         await check(dut, bus, m, board, 0)
@@ -164,8 +168,16 @@ async def ioport_semantics(dut) -> None:
 @cocotb.test()
 async def ioport_bite_and_restore(dut) -> None:
     bus, m, board = await setup(dut)
-    cfg = {(DATA, 0): 0x0AAAA, (INV, 0): 0x00F00, (ALT, 0): 0x000F0, (DDR, 0): 0x0FFF0,
-           (OD, 0): 0x0000F, (DATA, 1): 0x1F0F0, (DDR, 1): 0x1FFFF, (OD, 1): 0x10000}
+    cfg = {
+        (DATA, 0): 0x0AAAA,
+        (INV, 0): 0x00F00,
+        (ALT, 0): 0x000F0,
+        (DDR, 0): 0x0FFF0,
+        (OD, 0): 0x0000F,
+        (DATA, 1): 0x1F0F0,
+        (DDR, 1): 0x1FFFF,
+        (OD, 1): 0x10000,
+    }
     for (reg, port), val in cfg.items():
         await bus.write(addr(reg, port), val)
         m.write(reg, port, val)
@@ -231,7 +243,11 @@ async def ioport_random(dut) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_hm2_ioport(sim: str) -> None:
-    run(sim=sim, toplevel="hm2_ioport_bank",
+    run(
+        sim=sim,
+        toplevel="hm2_ioport_bank",
         sources=[hdl("common", "sync_ff.v"), hdl("hostmot2", "hm2_ioport_bank.v")],
         parameters={"NPORTS": NPORTS, "PORTWIDTH": PW},
-        test_module="test_hm2_ioport", test_dir=Path(__file__).parent)
+        test_module="test_hm2_ioport",
+        test_dir=Path(__file__).parent,
+    )

@@ -112,5 +112,10 @@ async def localbus_checks_latency(dut) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_hm2_localbus(sim: str) -> None:
-    run(sim=sim, toplevel="hm2_localbus", sources=[hdl("hostmot2", "hm2_localbus.v")],
-        test_module="test_hm2_localbus", test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="hm2_localbus",
+        sources=[hdl("hostmot2", "hm2_localbus.v")],
+        test_module="test_hm2_localbus",
+        test_dir=Path(__file__).parent,
+    )

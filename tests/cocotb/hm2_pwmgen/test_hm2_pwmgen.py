@@ -77,8 +77,10 @@ class Harness:
                 break
         await RisingEdge(d.clk_high)
         self.t0 = get_sim_time("ns")  # first edge with the ClockHigh side out of reset
-        self.logs = {n: VectorLog(getattr(d, n)).start()
-                     for n in ("cfg_h_q", "pwm_out0", "pwm_out1", "pwm_nenable")}
+        self.logs = {
+            n: VectorLog(getattr(d, n)).start()
+            for n in ("cfg_h_q", "pwm_out0", "pwm_out1", "pwm_nenable")
+        }
 
     async def write(self, reg: int, inst: int, data: int) -> None:
         await self.bus.write(addr(reg, inst), data)
@@ -113,8 +115,10 @@ class Harness:
             try:
                 pos = self.states.index(v, pos)
             except ValueError:
-                raise AssertionError(f"ClockHigh configuration {v:#x} is not a state the bus "
-                                     "wrote (torn or out of order transfer)") from None
+                raise AssertionError(
+                    f"ClockHigh configuration {v:#x} is not a state the bus "
+                    "wrote (torn or out of order transfer)"
+                ) from None
         assert seen[-1] == self.states[-1], "last write never reached ClockHigh"
 
         end = get_sim_time("ns")
@@ -139,8 +143,10 @@ class Harness:
                 o1_i += 1
             want = model.outputs()
             if (l0, l1) != want:
-                raise AssertionError(f"ClockHigh edge {k} (t={t}): out0,out1 = {l0:#x},{l1:#x}, "
-                                     f"model {want[0]:#x},{want[1]:#x}")
+                raise AssertionError(
+                    f"ClockHigh edge {k} (t={t}): out0,out1 = {l0:#x},{l1:#x}, "
+                    f"model {want[0]:#x},{want[1]:#x}"
+                )
             k += 1
 
 
@@ -213,7 +219,11 @@ async def resolutions_and_duty(dut) -> None:
             assert abs(duty - want) < 2.5 * PERIOD_HIGH / per + 1e-9, (mode, value, duty, want)
             if 0 < want < 1:
                 periods = meter.periods(t_a - per, t_b)
-                assert periods and all(abs(p - per) < 1e-6 for p in periods), (mode, periods[:3], per)
+                assert periods and all(abs(p - per) < 1e-6 for p in periods), (
+                    mode,
+                    periods[:3],
+                    per,
+                )
     h.check()
 
 
@@ -244,7 +254,11 @@ async def output_types(dut) -> None:
             elif omode == 1:
                 ok = d0 == dirn and abs(d1 - 0.25) < tol
             elif omode == 2:
-                ok = (abs(d0 - 0.25) < tol and d1 == 0) if dirn else (d0 == 0 and abs(d1 - 0.25) < tol)
+                ok = (
+                    (abs(d0 - 0.25) < tol and d1 == 0)
+                    if dirn
+                    else (d0 == 0 and abs(d1 - 0.25) < tol)
+                )
             else:
                 ok = abs(d0 - pdm_density(value)) < tol and d1 == dirn
                 # PDM: pulses are single slots (2 clocks), spread out
@@ -290,7 +304,9 @@ async def double_buffer(dut) -> None:
         await h.write(R_VAL, 1, reg_value(0, v))
         await h.wait_ns(per * 0.77)
     await h.wait_ns(2 * per)
-    allowed = {round(v * PERIOD_HIGH * 65536 / 0xFFFF / PERIOD_HIGH) for v in (100, 400, 50, 300, 200)}
+    allowed = {
+        round(v * PERIOD_HIGH * 65536 / 0xFFFF / PERIOD_HIGH) for v in (100, 400, 50, 300, 200)
+    }
     w0 = [round(w / PERIOD_HIGH) for w in DutyMeter(h.trace("pwm_out0", 0)).high_widths(0, 1e12)]
     assert w0 and all(min(abs(w - a) for a in allowed) <= 1 for w in w0), w0
     w1 = [round(w / PERIOD_HIGH) for w in DutyMeter(h.trace("pwm_out0", 1)).high_widths(0, 1e12)]
@@ -349,8 +365,11 @@ def test_hm2_pwmgen(sim: str) -> None:
     run(
         sim=sim,
         toplevel="hm2_pwmgen_bank",
-        sources=[hdl("common", "sync_ff.v"), hdl("hostmot2", "hm2_pwmgen.v"),
-                 hdl("hostmot2", "hm2_pwmgen_bank.v")],
+        sources=[
+            hdl("common", "sync_ff.v"),
+            hdl("hostmot2", "hm2_pwmgen.v"),
+            hdl("hostmot2", "hm2_pwmgen_bank.v"),
+        ],
         test_module="test_hm2_pwmgen",
         test_dir=Path(__file__).parent,
         parameters={"NUM": 2},

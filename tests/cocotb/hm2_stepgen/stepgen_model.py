@@ -103,8 +103,11 @@ class StepgenModel:
         else:
             event = (new_acc >> 32) != (self.acc >> 32)
         seq = self.mode >= 2
-        allowed = (not self.pulse and self.idle_left == 0
-                   and (seq or (self.dirn == int(neg) and self.setup_left == 0)))
+        allowed = (
+            not self.pulse
+            and self.idle_left == 0
+            and (seq or (self.dirn == int(neg) and self.setup_left == 0))
+        )
         do_event = tick and event and allowed
         do_add = tick and (not event or allowed)
         dir_change = int(neg) != self.dirn and not self.pulse and self.hold_left == 0

@@ -103,8 +103,9 @@ class Harness:
 
     def stepdir(self, inst: int, limits: StepLimits):
         assert self.log is not None
-        return check_stepdir(self.log.bit(inst * self.tw), self.log.bit(inst * self.tw + 1),
-                             PERIOD, limits)
+        return check_stepdir(
+            self.log.bit(inst * self.tw), self.log.bit(inst * self.tw + 1), PERIOD, limits
+        )
 
 
 async def program_timing(h: Harness, inst: int, pw: int, pi: int, ds: int, dh: int) -> StepLimits:
@@ -162,10 +163,22 @@ async def model_random(dut) -> None:
     for inst in range(h.num):
         modes[inst] = inst % 2  # instance 0 step/dir, instance 1 up/down
         await h.write(R_MODE, inst, modes[inst])
-        limits[inst] = await program_timing(h, inst, rng.randint(0, 3), rng.randint(0, 3),
-                                            rng.randint(0, 4), rng.randint(0, 4))
-    rates = [0x7FFFFFFF, -0x80000000, 0x40000000, -0x40000000, 0x12345678, -0x0ABCDEF0,
-             0x01000000, -0x00800000, 1, -1, 0]
+        limits[inst] = await program_timing(
+            h, inst, rng.randint(0, 3), rng.randint(0, 3), rng.randint(0, 4), rng.randint(0, 4)
+        )
+    rates = [
+        0x7FFFFFFF,
+        -0x80000000,
+        0x40000000,
+        -0x40000000,
+        0x12345678,
+        -0x0ABCDEF0,
+        0x01000000,
+        -0x00800000,
+        1,
+        -1,
+        0,
+    ]
     for seg in range(24):
         for inst in range(h.num):
             r = rng.choice(rates) if rng.random() < 0.6 else rng.randint(-(1 << 31), (1 << 31) - 1)
@@ -178,8 +191,9 @@ async def model_random(dut) -> None:
         if modes[inst] == 0:
             rep = h.stepdir(inst, limits[inst])
         else:
-            rep = check_updown(h.log.bit(inst * h.tw), h.log.bit(inst * h.tw + 1), PERIOD,
-                               limits[inst])
+            rep = check_updown(
+                h.log.bit(inst * h.tw), h.log.bit(inst * h.tw + 1), PERIOD, limits[inst]
+            )
         assert not rep.violations, rep.violations[:5]
         assert rep.up > 20 and rep.down > 20, f"instance {inst}: too little motion {rep}"
         # widths are exact: PulseWidth+1
@@ -283,7 +297,7 @@ async def table_mode(dut) -> None:
     h = Harness(dut)
     await h.start()
     tw = h.tw
-    seq = [0b0001, 0b0011, 0b0010, 0b0110, 0b0100][: 5]
+    seq = [0b0001, 0b0011, 0b0010, 0b0110, 0b0100][:5]
     seq = [s & ((1 << tw) - 1) for s in seq]
     await h.write(R_MASTER, 0, 0xFFFFFFFF)
     for entry in reversed(seq):
@@ -341,8 +355,12 @@ async def linuxcnc_driver_use(dut) -> None:
     await h.write(R_RATE, 0, 0)
     await h.wait(10)
     h.replay()
-    lim = StepLimits(width=clocks(steplen) + 1, idle=clocks(stepspace) + 1,
-                     setup=clocks(dirsetup) + 1, hold=clocks(dirhold) + 1)
+    lim = StepLimits(
+        width=clocks(steplen) + 1,
+        idle=clocks(stepspace) + 1,
+        setup=clocks(dirsetup) + 1,
+        hold=clocks(dirhold) + 1,
+    )
     rep = h.stepdir(0, lim)
     assert not rep.violations, rep.violations[:5]
     # ns on the pins: at least what LinuxCNC asked for

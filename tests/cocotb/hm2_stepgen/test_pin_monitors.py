@@ -25,12 +25,15 @@ def test_stepdir_clean_counts_both_ways() -> None:
     assert rep.widths == [2, 2, 2] and rep.holds == [9] and rep.setups == [15]
 
 
-@pytest.mark.parametrize("limits,needle", [
-    (StepLimits(width=3, idle=1, setup=1, hold=1), "pulse width 2 < 3"),
-    (StepLimits(width=1, idle=3, setup=1, hold=1), "pulse idle 2 < 3"),
-    (StepLimits(width=1, idle=1, setup=16, hold=1), "dir setup 15 < 16"),
-    (StepLimits(width=1, idle=1, setup=1, hold=10), "dir hold 9 < 10"),
-])
+@pytest.mark.parametrize(
+    "limits,needle",
+    [
+        (StepLimits(width=3, idle=1, setup=1, hold=1), "pulse width 2 < 3"),
+        (StepLimits(width=1, idle=3, setup=1, hold=1), "pulse idle 2 < 3"),
+        (StepLimits(width=1, idle=1, setup=16, hold=1), "dir setup 15 < 16"),
+        (StepLimits(width=1, idle=1, setup=1, hold=10), "dir hold 9 < 10"),
+    ],
+)
 def test_stepdir_each_rule_fires(limits: StepLimits, needle: str) -> None:
     step = tr(0, (10, 1), (12, 0), (14, 1), (16, 0), (40, 1), (42, 0))
     dirn = tr(0, (25, 1))

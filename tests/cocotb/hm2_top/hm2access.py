@@ -40,9 +40,15 @@ class EppAccess(Hm2Access):
     timeout check."""
 
     def __init__(self, dut) -> None:
-        self.host = EppHost(d_in=dut.epp_d_i, d_out=dut.epp_d_o, d_oe=dut.epp_d_oe,
-                            nwrite=dut.epp_nwrite, ndatastr=dut.epp_ndatastr,
-                            naddrstr=dut.epp_naddrstr, nwait=dut.epp_nwait)
+        self.host = EppHost(
+            d_in=dut.epp_d_i,
+            d_out=dut.epp_d_o,
+            d_oe=dut.epp_d_oe,
+            nwrite=dut.epp_nwrite,
+            ndatastr=dut.epp_ndatastr,
+            naddrstr=dut.epp_naddrstr,
+            nwait=dut.epp_nwait,
+        )
         self.host.start()
 
     async def _address(self, addr: int) -> None:
@@ -53,8 +59,9 @@ class EppAccess(Hm2Access):
 
     def _check(self, what: str, addr: int, n: int) -> None:
         if self.host.timed_out:
-            raise AssertionError(f"EPP timeout on data cycle of {what}(addr=0x{addr:04x}, "
-                                 f"size={4 * n})")
+            raise AssertionError(
+                f"EPP timeout on data cycle of {what}(addr=0x{addr:04x}, " f"size={4 * n})"
+            )
 
     async def read_block(self, addr: int, n: int) -> list[int]:
         await self._address(addr)

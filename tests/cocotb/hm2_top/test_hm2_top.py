@@ -41,8 +41,13 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from hm2access import EppAccess, LocalBusAccess  # noqa: E402
 
-FIRMWARES = [("5i20", "SVST8_4"), ("7i43", "SVST4_4"), ("5i20", "SV12"), ("7i43", "SV8"),
-             ("5i25", "7I76x2")]
+FIRMWARES = [
+    ("5i20", "SVST8_4"),
+    ("7i43", "SVST4_4"),
+    ("5i20", "SV12"),
+    ("7i43", "SV8"),
+    ("5i25", "7I76x2"),
+]
 
 
 # ------------------------------------------------------------------ harness
@@ -78,8 +83,9 @@ class Board:
         while True:
             self.dut.io_in.value = self.level()
             self._kick.clear()
-            await First(ValueChange(self.dut.io_out), ValueChange(self.dut.io_oe),
-                        self._kick.wait())
+            await First(
+                ValueChange(self.dut.io_out), ValueChange(self.dut.io_oe), self._kick.wait()
+            )
 
 
 class Fw:
@@ -160,10 +166,10 @@ async def top_idrom(dut) -> None:
     # walk the MD list like a driver: zero-GTag terminated, then PDs
     mds, i = [], words[1] // 4
     while words[i] & 0xFF:
-        mds.append(words[i:i + 3])
+        mds.append(words[i : i + 3])
         i += 3
     assert mds == [m["md_words"] for m in doc["modules"]]
-    pd = words[words[2] // 4:][: b["io_width"]]
+    pd = words[words[2] // 4 :][: b["io_width"]]
     assert all(w >> 24 == 3 for w in pd)
     assert pd == [p["pd_word"] for p in doc["pins"]]
 
@@ -358,8 +364,11 @@ async def top_routing_every_instance(dut) -> None:
     pins = fw.doc["pins"]
 
     def of(module: str, signal: str) -> dict[int, int]:
-        return {p["sec_unit"]: p["io"] for p in pins
-                if p["sec_module"] == module and p["sec_signal"] == signal}
+        return {
+            p["sec_unit"]: p["io"]
+            for p in pins
+            if p["sec_module"] == module and p["sec_signal"] == signal
+        }
 
     if "Encoder" in fw.mods:
         n = fw.mods["Encoder"]["instances"]
@@ -455,21 +464,29 @@ def _generate(board: str, name: str) -> dict:
     fw = load_firmware(HDL / "hostmot2" / "firmware" / board / f"{name}.toml")
     out = BUILD / "hm2gen" / board / name
     paths = write_all(fw, out)
-    return {"dir": out, "json": paths["json"], "top": paths["verilog_top"],
-            "module": fw.top_module}
+    return {"dir": out, "json": paths["json"], "top": paths["verilog_top"], "module": fw.top_module}
 
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 @pytest.mark.parametrize("board,name", FIRMWARES, ids=[f"{b}-{n}" for b, n in FIRMWARES])
 def test_hm2_top(board: str, name: str, sim: str) -> None:
     g = _generate(board, name)
-    sources = [g["top"], *sorted((HDL / "hostmot2").glob("hm2_*.v")),
-               *sorted((HDL / "common").glob("*.v"))]
+    sources = [
+        g["top"],
+        *sorted((HDL / "hostmot2").glob("hm2_*.v")),
+        *sorted((HDL / "common").glob("*.v")),
+    ]
     saved = _runner._VERILATOR_ARGS
     _runner._VERILATOR_ARGS = (*saved, *_SPLIT_ARGS)
     try:
-        run(sim=sim, toplevel=g["module"], sources=sources, includes=[g["dir"]],
-            test_module="test_hm2_top", test_dir=HERE,
-            extra_env={"HM2_FW_JSON": str(g["json"])})
+        run(
+            sim=sim,
+            toplevel=g["module"],
+            sources=sources,
+            includes=[g["dir"]],
+            test_module="test_hm2_top",
+            test_dir=HERE,
+            extra_env={"HM2_FW_JSON": str(g["json"])},
+        )
     finally:
         _runner._VERILATOR_ARGS = saved

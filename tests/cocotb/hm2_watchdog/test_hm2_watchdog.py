@@ -103,8 +103,9 @@ class Harness:
             if bite:
                 want.append(c)
             if c in self.reads:
-                assert rd == self.reads[c][1], \
-                    f"clock {c}: read {rd_addr:#06x} = {self.reads[c][1]:#x}, model {rd:#x}"
+                assert (
+                    rd == self.reads[c][1]
+                ), f"clock {c}: read {rd_addr:#06x} = {self.reads[c][1]:#x}, model {rd:#x}"
         assert self.bites == want, f"bites at {self.bites}, model {want}"
 
 
@@ -173,5 +174,10 @@ async def watchdog_spec(dut) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_hm2_watchdog(sim: str) -> None:
-    run(sim=sim, toplevel="hm2_watchdog", sources=[hdl("hostmot2", "hm2_watchdog.v")],
-        test_module="test_hm2_watchdog", test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="hm2_watchdog",
+        sources=[hdl("hostmot2", "hm2_watchdog.v")],
+        test_module="test_hm2_watchdog",
+        test_dir=Path(__file__).parent,
+    )

@@ -13,13 +13,22 @@ from common.epp import EppHost, EppTiming
 CLK_PERIOD_NS = 25  # 40 MHz
 
 
-def epp_host(dut: Any, *, ack_level: int = 1, timing: EppTiming | None = None,
-             strict: bool = True) -> EppHost:
+def epp_host(
+    dut: Any, *, ack_level: int = 1, timing: EppTiming | None = None, strict: bool = True
+) -> EppHost:
     """An EPP host on a design with the pluto_epp pin names."""
     host = EppHost(
-        d_in=dut.epp_d_i, d_out=dut.epp_d_o, d_oe=dut.epp_d_oe, nwrite=dut.epp_nwrite,
-        ndatastr=dut.epp_ndatastr, naddrstr=dut.epp_naddrstr, nwait=dut.epp_nwait,
-        nreset=dut.epp_nreset, ack_level=ack_level, timing=timing, strict=strict,
+        d_in=dut.epp_d_i,
+        d_out=dut.epp_d_o,
+        d_oe=dut.epp_d_oe,
+        nwrite=dut.epp_nwrite,
+        ndatastr=dut.epp_ndatastr,
+        naddrstr=dut.epp_naddrstr,
+        nwait=dut.epp_nwait,
+        nreset=dut.epp_nreset,
+        ack_level=ack_level,
+        timing=timing,
+        strict=strict,
     )
     host.start()
     return host

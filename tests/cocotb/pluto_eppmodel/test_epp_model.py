@@ -20,8 +20,15 @@ from common.runner import SIMULATORS, run
 class FakePeripheral:
     """Watches the host strobes and answers with configurable behaviour."""
 
-    def __init__(self, dut: Any, *, ack_ns: float = 100.0, release_ns: float = 50.0,
-                 mode: str = "good", read_value: int = 0x5A) -> None:
+    def __init__(
+        self,
+        dut: Any,
+        *,
+        ack_ns: float = 100.0,
+        release_ns: float = 50.0,
+        mode: str = "good",
+        read_value: int = 0x5A,
+    ) -> None:
         self.dut = dut
         self.ack_ns = ack_ns
         self.release_ns = release_ns
@@ -73,9 +80,17 @@ class FakePeripheral:
 
 
 def host_for(dut: Any, **kw: Any) -> EppHost:
-    h = EppHost(d_in=dut.epp_d_i, d_out=dut.epp_d_o, d_oe=dut.epp_d_oe, nwrite=dut.epp_nwrite,
-                ndatastr=dut.epp_ndatastr, naddrstr=dut.epp_naddrstr, nwait=dut.epp_nwait,
-                nreset=dut.epp_nreset, **kw)
+    h = EppHost(
+        d_in=dut.epp_d_i,
+        d_out=dut.epp_d_o,
+        d_oe=dut.epp_d_oe,
+        nwrite=dut.epp_nwrite,
+        ndatastr=dut.epp_ndatastr,
+        naddrstr=dut.epp_naddrstr,
+        nwait=dut.epp_nwait,
+        nreset=dut.epp_nreset,
+        **kw,
+    )
     h.start()
     return h
 
@@ -93,8 +108,16 @@ async def good_cycles(dut: Any) -> None:
     await host.outl(0x44332211)
     assert await host.inw() == 0xC3C3
     assert await host.read_addr() == 0xC3
-    assert per.seen == [("Aw", 0x12), ("Dw", 0x11), ("Dw", 0x22), ("Dw", 0x33), ("Dw", 0x44),
-                        ("Dr", -1), ("Dr", -1), ("Ar", -1)]
+    assert per.seen == [
+        ("Aw", 0x12),
+        ("Dw", 0x11),
+        ("Dw", 0x22),
+        ("Dw", 0x33),
+        ("Dw", 0x44),
+        ("Dr", -1),
+        ("Dr", -1),
+        ("Ar", -1),
+    ]
     assert host.trace() == "A(12) W(11) W(22) W(33) W(44) R(c3) R(c3) a(c3)"
     for c in host.cycles:
         assert 300.0 <= (c.ack_latency_ns or 0) <= 306.0, c
@@ -176,8 +199,9 @@ async def contention_is_flagged(dut: Any) -> None:
 @cocotb.test()
 async def stuck_acknowledge_is_flagged(dut: Any) -> None:
     FakePeripheral(dut, mode="stuck")
-    host = host_for(dut, strict=False,
-                    timing=EppTiming(release_timeout_ns=2_000.0, ready_timeout_ns=2_000.0))
+    host = host_for(
+        dut, strict=False, timing=EppTiming(release_timeout_ns=2_000.0, ready_timeout_ns=2_000.0)
+    )
     await settle()
     await host.write_addr(3)
     assert any("holds the acknowledge" in v for v in host.violations), host.violations
@@ -220,9 +244,16 @@ async def bad_arguments_are_refused(dut: Any) -> None:
     else:
         raise AssertionError("outw accepted a 17-bit value")
     try:
-        EppHost(d_in=dut.epp_d_i, d_out=dut.epp_d_o, d_oe=dut.epp_d_oe, nwrite=dut.epp_nwrite,
-                ndatastr=dut.epp_ndatastr, naddrstr=dut.epp_naddrstr, nwait=dut.epp_nwait,
-                ack_level=2)
+        EppHost(
+            d_in=dut.epp_d_i,
+            d_out=dut.epp_d_o,
+            d_oe=dut.epp_d_oe,
+            nwrite=dut.epp_nwrite,
+            ndatastr=dut.epp_ndatastr,
+            naddrstr=dut.epp_naddrstr,
+            nwait=dut.epp_nwait,
+            ack_level=2,
+        )
     except ValueError:
         pass
     else:

@@ -30,8 +30,9 @@ async def start(dut: Any) -> None:
     dut.rst.value = 0
 
 
-async def period(dut: Any, word: int, pdm: bool, counts: range | list[int] | None = None
-                 ) -> list[tuple[int, int]]:
+async def period(
+    dut: Any, word: int, pdm: bool, counts: range | list[int] | None = None
+) -> list[tuple[int, int]]:
     """Run the counter through ``counts`` (a full period by default) with
     ``word``; check every clock; return the (up, dn) sequence."""
     dut.word.value = word
@@ -97,5 +98,10 @@ async def random_words(dut: Any) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_pluto_pwm(sim: str) -> None:
-    run(sim=sim, toplevel="pluto_pwm", sources=[hdl("pluto", "pluto_pwm.v")],
-        test_module="test_pluto_pwm", test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="pluto_pwm",
+        sources=[hdl("pluto", "pluto_pwm.v")],
+        test_module="test_pluto_pwm",
+        test_dir=Path(__file__).parent,
+    )

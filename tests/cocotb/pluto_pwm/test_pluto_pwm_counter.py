@@ -39,5 +39,10 @@ async def counts_one_period(dut: Any) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_pluto_pwm_counter(sim: str) -> None:
-    run(sim=sim, toplevel="pluto_pwm_counter", sources=[hdl("pluto", "pluto_pwm_counter.v")],
-        test_module="test_pluto_pwm_counter", test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="pluto_pwm_counter",
+        sources=[hdl("pluto", "pluto_pwm_counter.v")],
+        test_module="test_pluto_pwm_counter",
+        test_dir=Path(__file__).parent,
+    )

@@ -49,8 +49,11 @@ class Bench:
         await RisingEdge(self.dut.clk)
         self.model.clock(a, b, z, clr)
         await FallingEdge(self.dut.clk)
-        got = (int(self.dut.count.value), int(self.dut.index_count.value),
-               int(self.dut.index_seen.value))
+        got = (
+            int(self.dut.count.value),
+            int(self.dut.index_count.value),
+            int(self.dut.index_seen.value),
+        )
         m = self.model
         assert got == (m.count, m.latch, m.seen), f"dut {got} model {(m.count, m.latch, m.seen)}"
 
@@ -146,5 +149,10 @@ async def noisy_index_and_clear_race(dut: Any) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_pluto_quad(sim: str) -> None:
-    run(sim=sim, toplevel="pluto_quad", sources=[hdl("pluto", "pluto_quad.v")],
-        test_module="test_pluto_quad", test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="pluto_quad",
+        sources=[hdl("pluto", "pluto_quad.v")],
+        test_module="test_pluto_quad",
+        test_dir=Path(__file__).parent,
+    )

@@ -23,8 +23,14 @@ from pluto_common.models import PWM_PERIOD, servo_ctrl_word, servo_pwm_word
 
 SOURCES = [hdl("common", "sync_ff.v")] + [
     hdl("pluto", f"{m}.v")
-    for m in ("pluto_epp", "pluto_quad", "pluto_pwm_counter", "pluto_pwm", "pluto_wdt",
-              "pluto_servo")
+    for m in (
+        "pluto_epp",
+        "pluto_quad",
+        "pluto_pwm_counter",
+        "pluto_pwm",
+        "pluto_wdt",
+        "pluto_servo",
+    )
 ]
 OUTS = 19
 LED = 18
@@ -95,10 +101,10 @@ async def driver_write_sets_pwm_and_outputs(dut: Any) -> None:
     b = Board(dut)
     await b.start()
     words = [
-        servo_pwm_word(0.25),                      # up/down, positive
-        servo_pwm_word(-0.5),                      # up/down, negative -> pulses on DN1
-        servo_pwm_word(-0.75, pwmdir=True),        # pwm+dir, negative -> DN2 high
-        servo_pwm_word(0.1, dout_up=True),         # UP3 inverted by dout.16
+        servo_pwm_word(0.25),  # up/down, positive
+        servo_pwm_word(-0.5),  # up/down, negative -> pulses on DN1
+        servo_pwm_word(-0.75, pwmdir=True),  # pwm+dir, negative -> DN2 high
+        servo_pwm_word(0.1, dout_up=True),  # UP3 inverted by dout.16
     ]
     douts = 0b1010011001
     ctrl = servo_ctrl_word(douts, z_polarity=False, watchdog=False, test_encoder=False)
@@ -340,5 +346,10 @@ async def dead_board_sets_communication_error(dut: Any) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_pluto_servo(sim: str) -> None:
-    run(sim=sim, toplevel="pluto_servo", sources=SOURCES, test_module="test_pluto_servo",
-        test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="pluto_servo",
+        sources=SOURCES,
+        test_module="test_pluto_servo",
+        test_dir=Path(__file__).parent,
+    )

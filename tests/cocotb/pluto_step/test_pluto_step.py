@@ -149,8 +149,12 @@ async def timing_fields_at_zero_and_max(dut: Any) -> None:
     31 ticks) is written as 31 and the 4-bit fields keep 15 -> 16 ticks
     (25.6 us), 30 us = 18 ticks wraps to 2 -> 3 ticks: the spec's section 12
     discrepancy, reproduced."""
-    for steplen_ns, dirtime_ns, want in ((0, 0, 1), (49600, 49600, 16), (24000, 24000, 16),
-                                         (30000, 30000, 3)):
+    for steplen_ns, dirtime_ns, want in (
+        (0, 0, 1),
+        (49600, 49600, 16),
+        (24000, 24000, 16),
+        (30000, 30000, 3),
+    ):
         host, drv = await start(dut)
         mon = StepMonitor(dut)
         timing = step_timing_word(steplen_ns, dirtime_ns, False)
@@ -236,5 +240,10 @@ async def wedged_host_then_recovery(dut: Any) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_pluto_step(sim: str) -> None:
-    run(sim=sim, toplevel="pluto_step", sources=SOURCES, test_module="test_pluto_step",
-        test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="pluto_step",
+        sources=SOURCES,
+        test_module="test_pluto_step",
+        test_dir=Path(__file__).parent,
+    )

@@ -168,5 +168,10 @@ async def random_against_model(dut: Any) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_pluto_stepgen(sim: str) -> None:
-    run(sim=sim, toplevel="pluto_stepgen", sources=[hdl("pluto", "pluto_stepgen.v")],
-        test_module="test_pluto_stepgen", test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="pluto_stepgen",
+        sources=[hdl("pluto", "pluto_stepgen.v")],
+        test_module="test_pluto_stepgen",
+        test_dir=Path(__file__).parent,
+    )

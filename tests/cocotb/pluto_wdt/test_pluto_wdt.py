@@ -70,5 +70,10 @@ async def random_against_model(dut: Any) -> None:
 
 @pytest.mark.parametrize("sim", SIMULATORS)
 def test_pluto_wdt(sim: str) -> None:
-    run(sim=sim, toplevel="pluto_wdt", sources=[hdl("pluto", "pluto_wdt.v")],
-        test_module="test_pluto_wdt", test_dir=Path(__file__).parent)
+    run(
+        sim=sim,
+        toplevel="pluto_wdt",
+        sources=[hdl("pluto", "pluto_wdt.v")],
+        test_module="test_pluto_wdt",
+        test_dir=Path(__file__).parent,
+    )

@@ -32,10 +32,7 @@ VBOARD = BUILD / "bin" / "vboard"
 HM2_SIM = BUILD / "lib" / "rtlib" / "hm2_sim.so"
 PROBE = HERE / "vbprobe.py"
 
-needs_vboard = pytest.mark.skipif(
-    not (HALRUN.exists() and VBOARD.exists() and HM2_SIM.exists()),
-    reason="halrun, vboard or hm2_sim.so not built",
-)
+needs_vboard = pytest.mark.requires_build(HALRUN, VBOARD, HM2_SIM)
 
 SEED_CONFIG = "firmware=hm2/5i20/SVST8_4.BIT num_encoders=1 num_pwmgens=1 num_stepgens=3"
 PFX = "hm2_5i20.0"

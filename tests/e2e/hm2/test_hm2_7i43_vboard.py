@@ -16,10 +16,8 @@ from hm2image import expected_pin_lines  # noqa: E402  (tests/driver, put on sys
 from test_hm2_sim_load import pin_lines, squeeze
 
 HM2_7I43 = BUILD / "lib" / "rtlib" / "hm2_7i43.so"
-pytestmark = pytest.mark.skipif(
-    not (HM2_7I43.exists() and (BUILD / "bin" / "vboard").exists()
-         and (BUILD / "lib" / "firmware" / "hm2" / "7i43" / "SVST4_4.BIT").exists()),
-    reason="hm2_7i43.so, vboard or the 7i43 firmware not built",
+pytestmark = pytest.mark.requires_build(
+    HM2_7I43, BUILD / "bin" / "vboard", BUILD / "lib" / "firmware" / "hm2" / "7i43" / "SVST4_4.BIT"
 )
 PFX = "hm2_7i43.0"
 

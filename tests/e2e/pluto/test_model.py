@@ -23,7 +23,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[3]
 BUILD = Path(os.environ.get("HM_BUILD", str(ROOT / "build")))
 DUMP = BUILD / "bin" / "pluto_dump"
-pytestmark = pytest.mark.skipif(not DUMP.exists(), reason="pluto_dump not built")
+pytestmark = pytest.mark.requires_build(DUMP)
 
 
 def extend(old: int, low: int, bits: int) -> int:

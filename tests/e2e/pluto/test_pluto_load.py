@@ -17,10 +17,7 @@ ROOT = Path(__file__).resolve().parents[3]
 BUILD = Path(os.environ.get("HM_BUILD", str(ROOT / "build")))
 HALRUN = BUILD / "bin" / "halrun"
 RTLIB = BUILD / "lib" / "rtlib"
-pytestmark = pytest.mark.skipif(
-    not (HALRUN.exists() and (RTLIB / "pluto_servo.so").exists()),
-    reason="halrun / pluto_servo.so not built",
-)
+pytestmark = pytest.mark.requires_build(HALRUN, RTLIB / "pluto_servo.so")
 
 
 def halrun(tmp_path: Path, script: str) -> subprocess.CompletedProcess[str]:
@@ -98,8 +95,7 @@ def test_step_speedrange(tmp_path: Path) -> None:
 
 
 def test_hm2_7i43_bad_port(tmp_path: Path) -> None:
-    if not (RTLIB / "hm2_7i43.so").exists():
-        pytest.skip("hm2_7i43.so not built")
+    assert (RTLIB / "hm2_7i43.so").exists(), "hm2_7i43.so not built (run `make build`)"
     r = halrun(tmp_path, "loadrt hostmot2\nloadrt hm2_7i43 port=ppdev:/nonexistent/pp0\nshow comp\n")
     out = r.stdout + r.stderr
     assert "hm2_7i43: loading HostMot2 Mesa 7i43 driver version 0.3" in out

@@ -22,10 +22,8 @@ from hm2e2e import vboard  # noqa: E402
 
 PLUTO_SERVO = e2e.BUILD / "lib" / "rtlib" / "pluto_servo.so"
 FIRMWARE = e2e.BUILD / "lib" / "firmware"
-pytestmark = pytest.mark.skipif(
-    not (e2e.HALRUN.exists() and e2e.VBOARD.exists() and PLUTO_SERVO.exists()
-         and (FIRMWARE / "pluto_servo.rbf").exists()),
-    reason="halrun, vboard, pluto_servo.so or the Pluto firmware files not built",
+pytestmark = pytest.mark.requires_build(
+    e2e.HALRUN, e2e.VBOARD, PLUTO_SERVO, FIRMWARE / "pluto_servo.rbf"
 )
 
 # Fixed pin numbering of the virtual Pluto-P (docs/vboard.md).
