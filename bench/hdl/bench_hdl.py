@@ -9,6 +9,8 @@ figure is never taken from a broken run."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import json
 import os
 
@@ -26,7 +28,7 @@ def emit(**fig: object) -> None:
         f.write(json.dumps(fig) + "\n")
 
 
-async def reset(dut, clk, cycles: int = 4) -> None:
+async def reset(dut: Any, clk: Any, cycles: int = 4) -> None:
     dut.rst.value = 1
     await ClockCycles(clk, cycles)
     await FallingEdge(clk)
@@ -35,7 +37,7 @@ async def reset(dut, clk, cycles: int = 4) -> None:
 
 
 @cocotb.test()
-async def stepgen_rates(dut) -> None:
+async def stepgen_rates(dut: Any) -> None:
     """Max step rate and timing resolution at several ClockLow values."""
     if not hasattr(dut, "step_out"):
         return
@@ -87,7 +89,7 @@ async def stepgen_rates(dut) -> None:
 
 
 @cocotb.test()
-async def encoder_count_rate(dut) -> None:
+async def encoder_count_rate(dut: Any) -> None:
     """Highest 4x count rate counted without error, filter off and on,
     sampling every ClockLow (QFilterRate = 0xFFF)."""
     if not hasattr(dut, "enc_a"):
@@ -136,7 +138,7 @@ async def encoder_count_rate(dut) -> None:
 
 
 @cocotb.test()
-async def pwm_frequency(dut) -> None:
+async def pwm_frequency(dut: Any) -> None:
     """PWM frequency per resolution at the maximum rate DDS, PDM slot rate."""
     if not hasattr(dut, "pwm_out0"):
         return

@@ -6,6 +6,8 @@ four outputs, and clear errors for invalid descriptions."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import csv
 import json
 import re
@@ -19,6 +21,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 
 from hm2gen import DescriptionError, load_firmware  # noqa: E402
+from hm2gen.model import Firmware  # noqa: E402
 from hm2gen.emit import write_all  # noqa: E402
 
 HM2 = ROOT / "hdl" / "hostmot2"
@@ -105,7 +108,9 @@ def generated(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, str],
 
 
 @pytest.mark.parametrize("board,name,stem,omitted", FIRMWARES, ids=[f[1] for f in FIRMWARES])
-def test_idrom_matches_stock_csv(generated, board, name, stem, omitted) -> None:
+def test_idrom_matches_stock_csv(
+    generated: dict[tuple[str, str], dict[str, Any]], board: str, name: str, stem: str, omitted: Any
+) -> None:
     words = generated[(board, name)]["hex"]
     assert len(words) == 256
     rows = list(csv.DictReader((PINMAPS / f"{stem}.csv").open()))
@@ -163,7 +168,7 @@ def test_idrom_matches_stock_csv(generated, board, name, stem, omitted) -> None:
         assert (m["gtag"], m["md_words"]) in expect
 
 
-def test_spec_worked_md_example(generated) -> None:
+def test_spec_worked_md_example(generated: dict[tuple[str, str], dict[str, Any]]) -> None:
     """spec section 4: SVST8_4 on a 5I20."""
     md = generated[("5i20", "SVST8_4")]["hex"][16 : 16 + 21]
     assert md == [
@@ -191,7 +196,7 @@ def test_spec_worked_md_example(generated) -> None:
     ]
 
 
-def test_seed_dmesg_pins(generated) -> None:
+def test_seed_dmesg_pins(generated: dict[tuple[str, str], dict[str, Any]]) -> None:
     """The seed's 5i20 dmesg pin list: every module pin it prints is the same
     connector pin, module, unit and signal in our SVST8_4."""
     pins = generated[("5i20", "SVST8_4")]["json"]["pins"]
@@ -224,7 +229,9 @@ def test_seed_dmesg_pins(generated) -> None:
 
 
 @pytest.mark.parametrize("board,name,stem,omitted", FIRMWARES, ids=[f[1] for f in FIRMWARES])
-def test_outputs_agree(generated, board, name, stem, omitted) -> None:
+def test_outputs_agree(
+    generated: dict[tuple[str, str], dict[str, Any]], board: str, name: str, stem: str, omitted: Any
+) -> None:
     g = generated[(board, name)]
     doc, words = g["json"], g["hex"]
     b = BOARDS[board]
@@ -280,7 +287,7 @@ def test_outputs_agree(generated, board, name, stem, omitted) -> None:
             assert f[6] == ("(Out)" if p["direction"] == "out" else "(In)")
 
 
-def test_alt_src_layout(generated) -> None:
+def test_alt_src_layout(generated: dict[tuple[str, str], dict[str, Any]]) -> None:
     """Module-output vector layout of the core: 0 none, then StepGen bits
     (instance*width+bit), then PWM Out0[], Out1[], NotEnable[]."""
     doc = generated[("5i20", "SVST8_4")]["json"]
@@ -328,7 +335,7 @@ def _write(tmp_path: Path, text: str) -> Path:
     return fw
 
 
-def _load(tmp_path: Path, text: str):
+def _load(tmp_path: Path, text: str) -> Firmware:
     return load_firmware(_write(tmp_path, text), HM2 / "boards")
 
 

@@ -13,6 +13,8 @@ TSDiv."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from pathlib import Path
 
@@ -56,7 +58,7 @@ def s16(v: int) -> int:
 
 
 class Harness:
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.dut = dut
         self.num = int(dut.NUM.value)
         self.bus = Hm2Bus(dut)
@@ -144,7 +146,7 @@ class _Vec:
     change different bits in the same time step (a read of the handle would
     not yet show a write made earlier in that step)."""
 
-    def __init__(self, handle, init: int = 0) -> None:
+    def __init__(self, handle: Any, init: int = 0) -> None:
         self.handle = handle
         self.shadow = init
         handle.value = init
@@ -177,14 +179,14 @@ class _BitSource:
         self.quad = QuadSource(*(_Bit(v, i) for v in vecs), seed=11 + i)
 
 
-def qfilter_reset(dut) -> int:
+def qfilter_reset(dut: Any) -> int:
     hz = int(dut.CLOCK_LOW_HZ.value)
     div = (hz + 8_000_000) // 16_000_000
     return div - 2 if div >= 2 else 0xFFF
 
 
 @cocotb.test()
-async def bus_rules(dut) -> None:
+async def bus_rules(dut: Any) -> None:
     """Register widths, read-only fields, unaddressed reads, the count clear."""
     h = Harness(dut)
     await h.start()
@@ -223,7 +225,7 @@ async def bus_rules(dut) -> None:
 
 
 @cocotb.test()
-async def power_up_with_idle_high_inputs(dut) -> None:
+async def power_up_with_idle_high_inputs(dut: Any) -> None:
     """Pulled-up inputs (A=B=Index=1) at power-up are not a quadrature
     error and not a count: the filter is primed from the pins."""
     h = Harness(dut)
@@ -260,7 +262,7 @@ async def _moves(
 
 
 @cocotb.test()
-async def model_random(dut) -> None:
+async def model_random(dut: Any) -> None:
     """Random motion on every instance (filter off on 0, on on 1, noise
     shorter than the filter), reads interleaved; exact model match and the
     count equals the true position."""
@@ -295,7 +297,7 @@ async def model_random(dut) -> None:
 
 
 @cocotb.test()
-async def filter_rejects_glitches(dut) -> None:
+async def filter_rejects_glitches(dut: Any) -> None:
     """A pulse shorter than the filter never reaches the counter; one longer
     than it does.  Filter on: 15 samples, off: 3; with QFilterRate = 2 the
     sample period is 4 clocks."""
@@ -322,7 +324,7 @@ async def filter_rejects_glitches(dut) -> None:
 
 
 @cocotb.test()
-async def quad_error_and_updown(dut) -> None:
+async def quad_error_and_updown(dut: Any) -> None:
     """A and B changing together sets the sticky bit 15 (write 0 keeps it,
     write 1 clears it); up/down mode counts A rising edges with B as
     direction and never flags an error."""
@@ -362,7 +364,7 @@ async def quad_error_and_updown(dut) -> None:
 
 
 @cocotb.test()
-async def index_features(dut) -> None:
+async def index_features(dut: Any) -> None:
     """Latch on index, clear on index, just-once, index polarity, index
     mask with its polarity, A/B gating; realtime A/B/Index read-back."""
     h = Harness(dut)
@@ -428,7 +430,7 @@ async def index_features(dut) -> None:
 
 
 @cocotb.test()
-async def timestamp_and_driver_use(dut) -> None:
+async def timestamp_and_driver_use(dut: Any) -> None:
     """The LinuxCNC driver's set-up (spec §10.2): TSDiv = floor(ClockLow/2e6)-2,
     QFilterRate for 25 MHz sampling (ClockLow/25e6 = 1 -> 0xFFF), filter on,
     index-enable (bits 4 and 6).  A 500 kHz-count encoder: the driver's

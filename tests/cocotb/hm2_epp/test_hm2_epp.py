@@ -8,6 +8,8 @@ test checks both what the host reads and exactly which hm2 reads/writes
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -84,7 +86,7 @@ class Target:
     """Internal-bus register target: answers bus_re one clock later, like
     every hm2 module, and logs the accesses."""
 
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.dut = dut
         self.mem: dict[int, int] = {}
         self.ops: list[tuple[str, int, int]] = []
@@ -110,7 +112,9 @@ class Target:
                 self.ops.append(("R", a, pending))
 
 
-async def setup(dut, timing: EppTiming | None = None) -> tuple[EppHost, Target, EppBridgeModel]:
+async def setup(
+    dut: Any, timing: EppTiming | None = None
+) -> tuple[EppHost, Target, EppBridgeModel]:
     cocotb.start_soon(Clock(dut.clk, PERIOD, unit="ns").start())
     dut.rst.value = 1
     host = EppHost(
@@ -177,7 +181,7 @@ class Both:
 
 
 @cocotb.test()
-async def epp_driver_transactions(dut) -> None:
+async def epp_driver_transactions(dut: Any) -> None:
     host, tgt, m = await setup(dut)
     t = Both(host, m)
     words = [0x11223344, 0xA5A5F00F, 0, 0xFFFFFFFF]
@@ -201,7 +205,7 @@ async def epp_driver_transactions(dut) -> None:
 
 
 @cocotb.test()
-async def epp_random_cycles(dut) -> None:
+async def epp_random_cycles(dut: Any) -> None:
     """Any order of address/data cycles, with and without auto-increment,
     unaligned starts, address reads: bytes and hm2 accesses as the model."""
     host, tgt, m = await setup(dut)
@@ -223,7 +227,7 @@ async def epp_random_cycles(dut) -> None:
 
 
 @cocotb.test()
-async def epp_reconfig(dut) -> None:
+async def epp_reconfig(dut: Any) -> None:
     host, tgt, m = await setup(dut)
     t = Both(host, m)
     await t.aw(0x7F)
@@ -242,7 +246,7 @@ async def epp_reconfig(dut) -> None:
 
 
 @cocotb.test()
-async def epp_glitch_and_abort(dut) -> None:
+async def epp_glitch_and_abort(dut: Any) -> None:
     """A strobe glitch shorter than the filter does nothing; a host that
     gives up before the acknowledge (EPP timeout) leaves the bridge ready."""
     host, tgt, m = await setup(dut)
@@ -271,7 +275,7 @@ async def epp_glitch_and_abort(dut) -> None:
 
 
 @cocotb.test()
-async def epp_pc_pace(dut) -> None:
+async def epp_pc_pace(dut: Any) -> None:
     """The same driver transactions at a PC port's pace (~1 us per cycle)."""
     host, tgt, m = await setup(dut, EppTiming.pc_isa())
     t = Both(host, m)

@@ -6,6 +6,8 @@ image given as parameter read back word by word, writes ignored unless
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from pathlib import Path
 
@@ -23,7 +25,7 @@ IMAGE_PARAM = sum(w << (32 * i) for i, w in enumerate(IMAGE))
 ID_BLOCK = [0x55AACAFE, 0x54534F48, 0x32544F4D, 0x00000400]
 
 
-async def setup(dut) -> Hm2Bus:
+async def setup(dut: Any) -> Hm2Bus:
     cocotb.start_soon(Clock(dut.clk, 20, unit="ns").start())
     dut.rst.value = 1
     bus = Hm2Bus(dut)
@@ -34,7 +36,7 @@ async def setup(dut) -> Hm2Bus:
 
 
 @cocotb.test()
-async def idrom_contents(dut) -> None:
+async def idrom_contents(dut: Any) -> None:
     bus = await setup(dut)
     # ID block, aliased every 16 bytes over the page; "HOSTMOT2" as bytes
     for k in range(0, 256, 4):
@@ -50,7 +52,7 @@ async def idrom_contents(dut) -> None:
 
 
 @cocotb.test()
-async def idrom_write_enable(dut) -> None:
+async def idrom_write_enable(dut: Any) -> None:
     bus = await setup(dut)
     await bus.write(0x400, 0xDEADBEEF)  # write-protected: ignored
     assert await bus.read(0x400) == IMAGE[0]

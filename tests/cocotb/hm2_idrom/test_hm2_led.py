@@ -5,6 +5,8 @@ other addresses do not touch it."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from pathlib import Path
 
@@ -19,7 +21,7 @@ RNG = random.Random(5)
 
 
 @cocotb.test()
-async def led_bits(dut) -> None:
+async def led_bits(dut: Any) -> None:
     cocotb.start_soon(Clock(dut.clk, 20, unit="ns").start())
     dut.rst.value = 1
     dut.bus_addr.value = 0

@@ -10,6 +10,8 @@ OpenDrain cleared, the rest kept) and register bits above the port width."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -62,7 +64,7 @@ class IoportModel:
 class Board:
     """Pull-ups plus an optional external driver per pin."""
 
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.dut = dut
         self.ext_en = 0
         self.ext_val = 0
@@ -82,7 +84,7 @@ class Board:
             await FallingEdge(self.dut.clk)
 
 
-async def setup(dut) -> tuple[Hm2Bus, IoportModel, Board]:
+async def setup(dut: Any) -> tuple[Hm2Bus, IoportModel, Board]:
     cocotb.start_soon(Clock(dut.clk, PERIOD, unit="ns").start())
     dut.rst.value = 1
     dut.bite.value = 0
@@ -97,7 +99,7 @@ async def setup(dut) -> tuple[Hm2Bus, IoportModel, Board]:
     return bus, IoportModel(), board
 
 
-async def check(dut, bus: Hm2Bus, m: IoportModel, board: Board, alt_out: int) -> None:
+async def check(dut: Any, bus: Hm2Bus, m: IoportModel, board: Board, alt_out: int) -> None:
     dut.alt_out.value = alt_out
     await ClockCycles(dut.clk, 4)  # through the 2-FF synchronizer
     await FallingEdge(dut.clk)
@@ -113,7 +115,7 @@ async def check(dut, bus: Hm2Bus, m: IoportModel, board: Board, alt_out: int) ->
 
 
 @cocotb.test()
-async def ioport_semantics(dut) -> None:
+async def ioport_semantics(dut: Any) -> None:
     bus, m, board = await setup(dut)
     # power-up: everything input, pins read the pull-ups
     await check(dut, bus, m, board, 0)
@@ -166,7 +168,7 @@ async def ioport_semantics(dut) -> None:
 
 
 @cocotb.test()
-async def ioport_bite_and_restore(dut) -> None:
+async def ioport_bite_and_restore(dut: Any) -> None:
     bus, m, board = await setup(dut)
     cfg = {
         (DATA, 0): 0x0AAAA,
@@ -218,7 +220,7 @@ async def ioport_bite_and_restore(dut) -> None:
 
 
 @cocotb.test()
-async def ioport_random(dut) -> None:
+async def ioport_random(dut: Any) -> None:
     bus, m, board = await setup(dut)
     rng = random.Random(7)
     alt = 0

@@ -8,6 +8,8 @@ read back what a dictionary model holds."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from pathlib import Path
 
@@ -25,7 +27,7 @@ class Target:
     is put on bus_rdata half a clock before E+1, i.e. it is there after E
     like a register's output (README rule: valid the cycle after bus_re)."""
 
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.dut = dut
         self.mem: dict[int, int] = {}
         self.ops: list[tuple[str, int, int]] = []
@@ -45,7 +47,7 @@ class Target:
                 self.ops.append(("W", a, d))
 
 
-async def setup(dut) -> tuple[LocalBus, Target]:
+async def setup(dut: Any) -> tuple[LocalBus, Target]:
     cocotb.start_soon(Clock(dut.clk, 30, unit="ns").start())
     dut.rst.value = 1
     lb = LocalBus(dut, dut.clk)
@@ -58,7 +60,7 @@ async def setup(dut) -> tuple[LocalBus, Target]:
 
 
 @cocotb.test()
-async def localbus_transfers(dut) -> None:
+async def localbus_transfers(dut: Any) -> None:
     lb, tgt = await setup(dut)
     await lb.write(0x1000, 0x12345678)
     assert tgt.ops == [("W", 0x1000, 0x12345678)]
@@ -85,7 +87,7 @@ async def localbus_transfers(dut) -> None:
 
 
 @cocotb.test()
-async def localbus_random(dut) -> None:
+async def localbus_random(dut: Any) -> None:
     lb, tgt = await setup(dut)
     rng = random.Random(3)
     model: dict[int, int] = {}
@@ -101,7 +103,7 @@ async def localbus_random(dut) -> None:
 
 
 @cocotb.test()
-async def localbus_checks_latency(dut) -> None:
+async def localbus_checks_latency(dut: Any) -> None:
     """The master's timing check itself: expecting a 3-clock latency from a
     2-clock target must fail (so the check in the top tests can fail)."""
     lb, _ = await setup(dut)

@@ -12,6 +12,8 @@ density, output types and Not-Enable."""
 
 from __future__ import annotations
 
+from typing import Any
+
 from pathlib import Path
 
 import cocotb
@@ -38,7 +40,7 @@ def addr(reg: int, inst: int = 0) -> int:
 
 
 class Harness:
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.dut = dut
         self.num = int(dut.NUM.value)
         self.bus = Hm2Bus(dut)
@@ -103,7 +105,7 @@ class Harness:
     async def wait_ns(self, ns: float) -> None:
         await Timer(round(ns * 1000) / 1000, unit="ns")
 
-    def trace(self, name: str, i: int):
+    def trace(self, name: str, i: int) -> Any:
         return self.logs[name].bit(i)
 
     def check(self) -> None:
@@ -151,7 +153,7 @@ class Harness:
 
 
 @cocotb.test()
-async def bus_rules(dut) -> None:
+async def bus_rules(dut: Any) -> None:
     """Enable is R/W and drives Not-Enable low; the rest is write-only."""
     h = Harness(dut)
     await h.start()
@@ -176,7 +178,7 @@ async def bus_rules(dut) -> None:
 
 
 @cocotb.test()
-async def cdc_burst(dut) -> None:
+async def cdc_burst(dut: Any) -> None:
     """Back-to-back writes of every register faster than the handshake:
     ClockHigh sees only whole states, in order, ending at the last."""
     h = Harness(dut)
@@ -193,7 +195,7 @@ async def cdc_burst(dut) -> None:
 
 
 @cocotb.test()
-async def resolutions_and_duty(dut) -> None:
+async def resolutions_and_duty(dut: Any) -> None:
     """Sawtooth and symmetric at 9..12 bits: 0 %, a middle value, 2^bits
     (100 %) and above; duty over whole periods and frequency by formula."""
     h = Harness(dut)
@@ -228,7 +230,7 @@ async def resolutions_and_duty(dut) -> None:
 
 
 @cocotb.test()
-async def output_types(dut) -> None:
+async def output_types(dut: Any) -> None:
     """Modes 00 PWM/DIR, 01 DIR/PWM, 10 up/down (Out0 when DIR=1), 11 PDM/DIR,
     each with both DIR values."""
     h = Harness(dut)
@@ -269,7 +271,7 @@ async def output_types(dut) -> None:
 
 
 @cocotb.test()
-async def pdm_density_exact(dut) -> None:
+async def pdm_density_exact(dut: Any) -> None:
     """PDM: over 4096 slots exactly value slots are high, for 0, 1, a middle
     value and 4095."""
     h = Harness(dut)
@@ -290,7 +292,7 @@ async def pdm_density_exact(dut) -> None:
 
 
 @cocotb.test()
-async def double_buffer(dut) -> None:
+async def double_buffer(dut: Any) -> None:
     """Mode bit 5: a value written mid-cycle only shows from the next cycle
     start, so every whole period has either the old or the new width."""
     h = Harness(dut)
@@ -316,7 +318,7 @@ async def double_buffer(dut) -> None:
 
 
 @cocotb.test()
-async def linuxcnc_driver_use(dut) -> None:
+async def linuxcnc_driver_use(dut: Any) -> None:
     """As the 2.9 driver programs it (spec §10.3) at ClockHigh = 100 MHz:
     pwm_frequency 20 kHz -> 12 bits, dds 53687; output-type 1; value 0.3 and
     -0.6 of scale; enable bit; PDM (output-type 3) at 10 MHz."""

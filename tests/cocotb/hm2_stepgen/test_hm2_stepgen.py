@@ -10,6 +10,8 @@ the same clocks to the same values, and every accumulator read to match."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from pathlib import Path
 
@@ -37,7 +39,7 @@ def addr(reg: int, inst: int = 0) -> int:
 class Harness:
     """Clock, reset, bus, pin log and the write/read journal for the model."""
 
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.dut = dut
         self.num = int(dut.NUM.value)
         self.tw = int(dut.TABLE_WIDTH.value)
@@ -101,7 +103,7 @@ class Harness:
             raise AssertionError(f"firmware made {len(seen)} pin changes, model {len(expected)}")
         return model
 
-    def stepdir(self, inst: int, limits: StepLimits):
+    def stepdir(self, inst: int, limits: StepLimits) -> Any:
         assert self.log is not None
         return check_stepdir(
             self.log.bit(inst * self.tw), self.log.bit(inst * self.tw + 1), PERIOD, limits
@@ -117,7 +119,7 @@ async def program_timing(h: Harness, inst: int, pw: int, pi: int, ds: int, dh: i
 
 
 @cocotb.test()
-async def bus_rules(dut) -> None:
+async def bus_rules(dut: Any) -> None:
     """Write-only registers read 0, unaddressed reads read 0, the accumulator
     reads back 16.16 and a write loads it without producing a step."""
     h = Harness(dut)
@@ -150,7 +152,7 @@ async def bus_rules(dut) -> None:
 
 
 @cocotb.test()
-async def model_random(dut) -> None:
+async def model_random(dut: Any) -> None:
     """Random rates (both signs, tiny to maximum, sign flips mid-pulse),
     random short timing values incl. 0, step/dir and up/down modes, all
     instances at once; exact match with the model and no timing violation."""
@@ -201,7 +203,7 @@ async def model_random(dut) -> None:
 
 
 @cocotb.test()
-async def max_rate_and_limits(dut) -> None:
+async def max_rate_and_limits(dut: Any) -> None:
     """Maximum rate with timing 0: one step every 2 clocks (ClockLow/2),
     both directions; position matches the accumulator and the model."""
     h = Harness(dut)
@@ -226,7 +228,7 @@ async def max_rate_and_limits(dut) -> None:
 
 
 @cocotb.test()
-async def timing_max_values(dut) -> None:
+async def timing_max_values(dut: Any) -> None:
     """All four timing registers at 0x3FFF (the 14-bit maximum): pulse is
     exactly 16384 clocks, reversal keeps hold and setup; the 15th bit of a
     write is ignored."""
@@ -249,7 +251,7 @@ async def timing_max_values(dut) -> None:
 
 
 @cocotb.test()
-async def master_dds_scaling(dut) -> None:
+async def master_dds_scaling(dut: Any) -> None:
     """Master DDS 0 freezes every stepgen; 0x40000000 gives a tick every 4
     clocks, so the position is rate * cycles / 4 / 2^32."""
     h = Harness(dut)
@@ -267,7 +269,7 @@ async def master_dds_scaling(dut) -> None:
 
 
 @cocotb.test()
-async def quadrature_mode(dut) -> None:
+async def quadrature_mode(dut: Any) -> None:
     """Mode 2: Gray code from accumulator bits 31..30, one full cycle per
     step, never skipping a state even at the maximum rate; every state lasts
     PulseWidth+PulseIdle+2 clocks at least."""
@@ -291,7 +293,7 @@ async def quadrature_mode(dut) -> None:
 
 
 @cocotb.test()
-async def table_mode(dut) -> None:
+async def table_mode(dut: Any) -> None:
     """Mode 3: the table is written last entry first, TableLength = n-1,
     the pointer walks forward on positive steps and backward on negative."""
     h = Harness(dut)
@@ -324,7 +326,7 @@ async def table_mode(dut) -> None:
 
 
 @cocotb.test()
-async def linuxcnc_driver_use(dut) -> None:
+async def linuxcnc_driver_use(dut: Any) -> None:
     """Registers exactly as the LinuxCNC 2.9 hostmot2 driver writes them
     (spec §10.1): timing = floor(ns*ClockLow/1e9), MasterDDS = 0xFFFFFFFF,
     Rate = vel*scale*2^32/ClockLow; 1 kHz for 5 ms, then -1 kHz for 5 ms.

@@ -5,6 +5,8 @@ transactions, spec/hostmot2.md section 17.2) for the 7i43."""
 
 from __future__ import annotations
 
+from typing import Any
+
 from common.epp import EppHost
 from common.localbus import LocalBus
 
@@ -24,7 +26,7 @@ class Hm2Access:
 
 
 class LocalBusAccess(Hm2Access):
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.lb = LocalBus(dut, dut.clk_low)
 
     async def read_block(self, addr: int, n: int) -> list[int]:
@@ -39,7 +41,7 @@ class EppAccess(Hm2Access):
     auto-increment flag, then 4 data cycles per word, LSB first, then the
     timeout check."""
 
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.host = EppHost(
             d_in=dut.epp_d_i,
             d_out=dut.epp_d_o,

@@ -14,6 +14,8 @@ stock pin maps in tests/tools) and the spec's register formulas.
 
 from __future__ import annotations
 
+from typing import Any
+
 import json
 import os
 import sys
@@ -56,7 +58,7 @@ FIRMWARES = [
 class Board:
     """What is on the pins: pull-ups and optional external drivers."""
 
-    def __init__(self, dut, iow: int) -> None:
+    def __init__(self, dut: Any, iow: int) -> None:
         self.dut = dut
         self.full = (1 << iow) - 1
         self.ext_en = 0
@@ -89,7 +91,7 @@ class Board:
 
 
 class Fw:
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.dut = dut
         self.doc = json.loads(Path(os.environ["HM2_FW_JSON"]).read_text())
         b = self.doc["board"]
@@ -150,7 +152,7 @@ def signed16(v: int) -> int:
 
 
 @cocotb.test()
-async def top_idrom(dut) -> None:
+async def top_idrom(dut: Any) -> None:
     fw = Fw(dut)
     await fw.start()
     doc = fw.doc
@@ -175,7 +177,7 @@ async def top_idrom(dut) -> None:
 
 
 @cocotb.test()
-async def top_gpio_led(dut) -> None:
+async def top_gpio_led(dut: Any) -> None:
     fw = Fw(dut)
     await fw.start()
     last = fw.iow - 1
@@ -208,7 +210,7 @@ async def top_gpio_led(dut) -> None:
 
 
 @cocotb.test()
-async def top_stepgen(dut) -> None:
+async def top_stepgen(dut: Any) -> None:
     fw = Fw(dut)
     if "StepGen" not in fw.mods:
         return
@@ -240,7 +242,7 @@ async def top_stepgen(dut) -> None:
 
 
 @cocotb.test()
-async def top_encoder(dut) -> None:
+async def top_encoder(dut: Any) -> None:
     fw = Fw(dut)
     if "Encoder" not in fw.mods:
         return
@@ -281,7 +283,7 @@ async def top_encoder(dut) -> None:
 
 
 @cocotb.test()
-async def top_pwmgen(dut) -> None:
+async def top_pwmgen(dut: Any) -> None:
     fw = Fw(dut)
     if "PWMGen" not in fw.mods:
         return
@@ -312,7 +314,7 @@ async def top_pwmgen(dut) -> None:
 
 
 @cocotb.test()
-async def top_watchdog(dut) -> None:
+async def top_watchdog(dut: Any) -> None:
     """Bite: all pins inputs (pulled high) while modules keep running;
     recovery as the driver does it restores the configured pins."""
     fw = Fw(dut)
@@ -354,7 +356,7 @@ async def top_watchdog(dut) -> None:
 
 
 @cocotb.test()
-async def top_routing_every_instance(dut) -> None:
+async def top_routing_every_instance(dut: Any) -> None:
     """Every instance's pins are where the pin descriptors say: each encoder
     sees its own A/B/Index pins, each PWMGen drives its own Out0/Out1/
     NotEnable pins, each StepGen its own Step/Direction pins, and nothing

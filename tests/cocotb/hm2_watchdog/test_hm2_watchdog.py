@@ -8,6 +8,8 @@ cookie 0x5A, bit 31 = disabled, sticky status) come on top."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from pathlib import Path
 
@@ -55,7 +57,7 @@ class WatchdogModel:
 
 
 class Harness:
-    def __init__(self, dut) -> None:
+    def __init__(self, dut: Any) -> None:
         self.dut = dut
         self.bus = Hm2Bus(dut)
         self.writes: dict[int, list[tuple[int, int]]] = {}
@@ -110,7 +112,7 @@ class Harness:
 
 
 @cocotb.test()
-async def watchdog_spec(dut) -> None:
+async def watchdog_spec(dut: Any) -> None:
     h = Harness(dut)
     await h.start()
     # power-up: disabled, not bitten

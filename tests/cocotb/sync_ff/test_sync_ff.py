@@ -4,6 +4,8 @@ input bit STAGES clocks earlier, and reset forces RESET_VALUE."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import random
 from collections import deque
 from pathlib import Path
@@ -36,7 +38,7 @@ class SyncModel:
 
 
 @cocotb.test()
-async def delay_matches_model(dut) -> None:
+async def delay_matches_model(dut: Any) -> None:
     width = int(dut.WIDTH.value)
     stages = int(dut.STAGES.value)
     reset_value = int(dut.RESET_VALUE.value)
