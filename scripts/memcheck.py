@@ -5,9 +5,9 @@
    command line, environment and working directory as ctest lists them
    (``ctest --show-only=json-v1``).
 2. One HAL session: ``halrun -S`` (the HAL file on stdin) with hostmot2 +
-   hm2_sim on a virtual 5i20
-   running SVST8_4 (bin/vboard, not under valgrind: it is Verilated C++ and
-   the board, not the host code under test), a servo thread with the
+   hm2_sim on a virtual 5i20 running SVST8_4 (bin/vboard, not under
+   valgrind: it is Verilated C++ and the board, not the host code under
+   test), a servo thread with the
    driver's read/write functions, 20 ms of simulated time, then unload.
    halcmd and rtapi_app (where hostmot2 and hm2_sim run) are both under
    valgrind: halrun finds halcmd next to itself, so a copy of halrun sits in
