@@ -7,6 +7,8 @@
 #                   in tests/skips.txt, or an area without tests, fails it.
 #   make demo       the main job (see README)
 #   make bench      speed figures next to their anchors (not part of `make test`)
+#   make compat     LinuxCNC 2.9's sample configurations on our HAL (docs/compat.md;
+#                   not part of `make test`; COMPAT_ARGS passes options)
 #   make lint       HDL through Verilator/Icarus/yosys, Python through black
 #   make memcheck   valgrind memcheck over the C unit tests and a hostmot2 +
 #                   hm2_sim HAL session (non-sanitized build/)
@@ -32,7 +34,7 @@ DEFAULT_BUILD := $(filter $(ROOT)/build $(ROOT)/build-san,$(BUILD))
 ENV := source $(ROOT)/scripts/env.sh &&
 PYTEST_ARGS ?=
 
-.PHONY: all deps build test test-host demo bench lint memcheck clean distclean fuzz
+.PHONY: all deps build test test-host demo bench lint memcheck clean distclean fuzz compat
 
 all: build
 
@@ -62,6 +64,9 @@ demo: build
 
 bench: build
 	@$(ENV) bash $(ROOT)/bench/run.sh
+
+compat: build
+	@$(ENV) cd $(ROOT) && python tests/compat/compat.py $(COMPAT_ARGS)
 
 lint: deps
 	@$(ENV) bash $(ROOT)/scripts/lint.sh

@@ -1,0 +1,500 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""`make compat`: LinuxCNC 2.9's sample configurations on our HAL (docs/compat.md).
+
+For every INI file of the chosen sample configurations: copy the
+configuration into a temporary directory, prepare its [HAL] HALFILEs and
+HALCMDs with halprep (motion, kinematics, iocontrol, halui and GUI lines
+removed; boards pointed at virtual boards), start the virtual boards and
+parallel ports it needs, and run everything in one `halrun -S -k -i INI`
+session followed by 100 ms of simulated time.  A file is *loaded* when none
+of its lines failed.  The report (Markdown, also JSON) lists each file's
+result; the exit status is 1 when any file failed.
+
+The sample configurations are LinuxCNC's files: they are read from
+/usr/share/doc/linuxcnc/examples/sample-configs at run time and never
+copied into this tree.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import uuid
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(ROOT / "tests" / "common"))
+import halprep  # noqa: E402
+import vboard  # noqa: E402
+
+SAMPLES = Path("/usr/share/doc/linuxcnc/examples/sample-configs")
+HALLIB = Path("/usr/share/linuxcnc/hallib")
+DEFAULT_SETS = ["by_interface/mesa/hm2-*", "by_interface/pluto", "by_machine/smithy", "sim"]
+VIRTUAL_BOARDS = {"5i20", "5i25", "7i43", "pluto"}
+RUN_NS = "100ms"
+ERROR_LINE = re.compile(r"^(?P<file>[^\s:][^:]*):(?P<line>\d+): (?P<msg>.*)$")
+
+
+def build_dir() -> Path:
+    return Path(os.environ.get("HM_BUILD", str(ROOT / "build")))
+
+
+# ---- results ----------------------------------------------------------------
+
+
+@dataclass
+class FileResult:
+    name: str  # as the INI names it (LIB:x.hal, sub/x.hal, HALCMD)
+    status: str = "loaded"  # loaded, failed, not run
+    first_error: str = ""  # file:line: message
+    context: str = ""  # the messages printed just before it
+    errors: int = 0
+    causes: list[str] = field(default_factory=list)  # every failing line's cause, classified
+    removed: dict[str, int] = field(default_factory=dict)
+    rewritten: dict[str, int] = field(default_factory=dict)
+    note: str = ""
+
+
+@dataclass
+class ConfigResult:
+    ini: str
+    files: list[FileResult] = field(default_factory=list)
+    postgui: list[str] = field(default_factory=list)
+    run_error: str = ""
+    hardware: list[str] = field(default_factory=list)
+    seconds: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return not self.run_error and all(f.status == "loaded" for f in self.files)
+
+
+# ---- virtual hardware -------------------------------------------------------
+
+
+class Hardware:
+    """Virtual boards and parallel ports a configuration asks for; the hook
+    halprep.prepare calls for every kept line rewrites driver lines."""
+
+    def __init__(self, tmp: Path) -> None:
+        self.tmp = tmp
+        self.boards: list[vboard.VBoardProcess] = []
+        self.used: list[str] = []
+        self.ports = 0
+
+    def board(self, kind: str) -> Path:
+        sock = self.tmp / f"vb{len(self.boards)}.sock"
+        self.boards.append(
+            vboard.VBoardProcess(sock, kind, None, (), build_dir() / "bin" / "vboard")
+        )
+        self.used.append(f"vboard {kind}")
+        return sock
+
+    def vport(self) -> Path:
+        path = self.tmp / f"pp{self.ports}"
+        self.ports += 1
+        subprocess.run(
+            [str(build_dir() / "bin" / "vparport"), "create", str(path)], check=True, timeout=30
+        )
+        self.used.append("vparport")
+        return path
+
+    def stop(self) -> None:
+        for b in self.boards:
+            try:
+                b.stop()
+            except Exception:  # a board that hangs on exit must not stop the run
+                b.kill()
+
+    def hook(
+        self, line: int, text: str, words: list[str], action: halprep.Action
+    ) -> halprep.Action:
+        if len(words) < 2 or words[0] != "loadrt":
+            return action
+        mod, args = words[1], words[2:]
+        if mod == "hm2_pci":
+            return self._hm2_pci(args, action)
+        if mod == "hm2_7i43":
+            sock = self.board("7i43")
+            keep = [a for a in args if not a.startswith(("ioaddr", "port="))]
+            return _rewrite(["loadrt", "hm2_7i43", f"port=sim:{sock}", *keep], "7i43 on vboard")
+        if mod in ("pluto_servo", "pluto_step"):
+            sock = self.board("pluto")
+            keep = [a for a in args if not a.startswith(("ioaddr", "port="))]
+            return _rewrite(["loadrt", mod, f"port=sim:{sock}", *keep], "Pluto-P on vboard")
+        if mod == "hal_parport":
+            return self._parport(args, action)
+        return action
+
+    def _hm2_pci(self, args: list[str], action: halprep.Action) -> halprep.Action:
+        config = next((a[7:] for a in args if a.startswith("config=")), "")
+        m = re.search(r"firmware=hm2/([^/\s]+)/", config)
+        board = m.group(1).split("-")[0] if m else ""
+        if board not in VIRTUAL_BOARDS:
+            return halprep.Action("keep", why=f"no virtual board for '{board or 'unknown board'}'")
+        sock = self.board(board)
+        keep = [a for a in args if not a.startswith("config=")]
+        return _rewrite(
+            ["loadrt", "hm2_sim", f"socket={sock}", f"board={board}", *keep, f"config={config}"],
+            f"{board} on vboard",
+        )
+
+    def _parport(self, args: list[str], action: halprep.Action) -> halprep.Action:
+        cfg = next((a[4:] for a in args if a.startswith("cfg=")), None)
+        if cfg is None:
+            return action
+        out = []
+        for tok in cfg.split():
+            out.append(tok if tok in ("in", "out", "epp", "x") else f"sim:{self.vport()}")
+        keep = [a for a in args if not a.startswith("cfg=")]
+        return _rewrite(
+            ["loadrt", "hal_parport", *keep, "cfg=" + " ".join(out)], "virtual parallel ports"
+        )
+
+
+def _quoted(key: str, value: str) -> str:
+    return f'{key}="{value}"'
+
+
+def _requote(arg: str) -> str:
+    """key=value with blanks in the value, quoted again for halcmd."""
+    key, eq, value = arg.partition("=")
+    return _quoted(key, value) if eq and any(c.isspace() for c in value) else arg
+
+
+def _rewrite(words: list[str], why: str) -> halprep.Action:
+    return halprep.Action("rewrite", "board", why, " ".join(_requote(w) for w in words))
+
+
+# ---- one configuration ------------------------------------------------------
+
+
+def _copy_config(ini_path: Path, work: Path) -> None:
+    work.mkdir(parents=True)
+    for p in ini_path.parent.iterdir():
+        if p.is_file():
+            shutil.copy2(p, work / p.name)
+
+
+def _source_file(name: str, cfgdir: Path, work: Path) -> tuple[Path | None, Path]:
+    """(original file, where the prepared copy goes) for a HALFILE name."""
+    if name.startswith("LIB:"):
+        return (HALLIB / name[4:], work / "hallib" / name[4:])
+    src = Path(name) if os.path.isabs(name) else cfgdir / name
+    dst = work / os.path.normpath(name).lstrip("/")
+    if not src.exists() and (HALLIB / name).exists():
+        return (HALLIB / name, dst)  # LinuxCNC looks in its HAL library next
+    return (src if src.exists() else None, dst)
+
+
+def _prepare_files(
+    res: ConfigResult, ini: halprep.Ini, cfgdir: Path, work: Path, hw: Hardware
+) -> tuple[list[str], dict[str, FileResult]]:
+    """Prepared copies in work; the source lines of the session; the
+    results by the name the session's error lines will use."""
+    ctx = halprep.Context()
+    sources: list[str] = []
+    by_name: dict[str, FileResult] = {}
+    for entry in ini.all("HAL", "HALFILE"):
+        if not entry.split():
+            continue  # an empty HALFILE= names nothing
+        name = entry.split()[0]
+        fr = FileResult(name)
+        res.files.append(fr)
+        src, dst = _source_file(name, cfgdir, work)
+        if src is None:
+            fr.status, fr.first_error = "failed", f"{name}: file not found"
+            continue
+        if src.suffix == ".tcl":
+            fr.status = "failed"
+            fr.first_error = (
+                f"{name}: a Tcl HAL file (run by haltcl), which this project does not have"
+            )
+            continue
+        prep = halprep.prepare(src.read_text(errors="replace"), ini, ctx, hw.hook)
+        fr.removed, fr.rewritten = prep.count("remove"), prep.count("rewrite")
+        fr.note = "; ".join(a.why for _, a in prep.actions if a.kind == "keep" and a.why)
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        dst.write_text(prep.text)
+        rel = str(dst.relative_to(work))
+        sources.append(rel)
+        by_name[rel] = fr
+    cmds = ini.all("HAL", "HALCMD")
+    if cmds:
+        fr = FileResult("HALCMD")
+        res.files.append(fr)
+        prep = halprep.prepare("\n".join(cmds) + "\n", ini, ctx, hw.hook)
+        fr.removed, fr.rewritten = prep.count("remove"), prep.count("rewrite")
+        (work / "compat-halcmd.hal").write_text(prep.text)
+        sources.append("compat-halcmd.hal")
+        by_name["compat-halcmd.hal"] = fr
+    return sources, by_name
+
+
+def _twopass(work: Path, sources: list[str], ini: halprep.Ini) -> None:
+    """TWOPASS=on: all loadrt lines first, merged per module, as LinuxCNC."""
+    lines: list[list[str]] = []
+    for rel in sources:
+        path = work / rel
+        out = []
+        for text in path.read_text().split("\n"):
+            body = text.split("#", 1)[0].split()
+            if body and body[0] == "loadrt" and len(body) > 1:
+                lines.append(halprep.resolve(" ".join(body), ini).split())
+                out.append(f"#compat: twopass: {text.strip()}")
+            else:
+                out.append(text)
+        path.write_text("\n".join(out))
+    (work / "compat-twopass.hal").write_text("\n".join(halprep.twopass_merge(lines)) + "\n")
+    sources.insert(0, "compat-twopass.hal")
+
+
+INFORMATIVE = re.compile(
+    r"not found|cannot|can't|failed|error|unknown|invalid|no such|missing", re.I
+)
+
+
+def _context(recent: list[str]) -> str:
+    """The messages that explain a failure: those that say what went wrong
+    (at most three), else the last one."""
+    picked = [ln for ln in recent if INFORMATIVE.search(ln)][-3:]
+    return " / ".join(picked or recent[-1:])
+
+
+INI_FORM = re.compile(r"(\[[^\]\s]+\]\([^)\s]+\))")
+CAUSES = [
+    (re.compile(r"(\S+): dlopen: \S+\.so: cannot open shared object file"), "component {0}"),
+    (re.compile(r"firmware (\S+) not found"), "firmware {0}"),
+    (re.compile(r"Can't find program '([^']+)'"), "program {0}"),
+    (re.compile(r"(Unknown parameter `[^']*')"), "{0}"),
+]
+CONSEQUENCE = re.compile(r"not found|does not exist")
+
+
+def _cause(line: str, context: str) -> str:
+    """What a failing line says is missing, in a few words."""
+    m = INI_FORM.search(line) or INI_FORM.search(context)
+    if m:
+        return f"halcmd: INI substitution {m.group(1)} (the [SECTION](KEY) form)"
+    for rx, fmt in CAUSES:
+        m = rx.search(context) or rx.search(line)
+        if m:
+            return fmt.format(*m.groups())
+    if CONSEQUENCE.search(line) or CONSEQUENCE.search(context):
+        return "a pin, parameter, signal or function that does not exist (often a consequence)"
+    return "halcmd: " + re.sub(r"'[^']*'", "'…'", re.sub(r"^\S+:\d+: ", "", line))
+
+
+def _parse_output(out: str, by_name: dict[str, FileResult], res: ConfigResult) -> None:
+    recent: list[str] = []
+    for line in out.splitlines():
+        m = ERROR_LINE.match(line)
+        fr = by_name.get(m.group("file")) if m else None
+        if m and m.group("file") == "compat-main.hal":
+            res.run_error = res.run_error or f"{line} ({' / '.join(recent[-2:])})"
+            recent = []
+            continue
+        if fr is None:
+            if line.strip():
+                recent.append(line.strip())
+            continue
+        fr.errors += 1
+        cause = _cause(line, _context(recent))
+        if cause not in fr.causes:
+            fr.causes.append(cause)
+        if fr.status != "failed":
+            fr.status = "failed"
+            display = fr.name if fr.name != "HALCMD" else "HALCMD"
+            fr.first_error = f"{display}:{m.group('line')}: {m.group('msg')}"  # type: ignore[union-attr]
+            fr.context = _context(recent)
+        recent = []
+
+
+def run_config(ini_path: Path, samples: Path, halrun: Path, timeout: float) -> ConfigResult:
+    res = ConfigResult(str(ini_path.relative_to(samples)))
+    t0 = time.monotonic()
+    tmp = Path(tempfile.mkdtemp(prefix="cp"))
+    hw = Hardware(tmp)
+    try:
+        work = tmp / "cfg"
+        _copy_config(ini_path, work)
+        text = halprep.expand_includes(
+            ini_path.read_text(errors="replace"),
+            lambda p: (ini_path.parent / p).read_text(errors="replace"),
+        )
+        (work / "compat.ini").write_text(text)
+        ini = halprep.parse_ini(text)
+        res.postgui = ini.all("HAL", "POSTGUI_HALFILE")
+        sources, by_name = _prepare_files(res, ini, ini_path.parent, work, hw)
+        res.hardware = hw.used
+        if (ini.get("HAL", "TWOPASS") or "").lower() not in ("", "0", "off", "no", "false"):
+            _twopass(work, sources, ini)
+            by_name["compat-twopass.hal"] = FileResult("TWOPASS loadrt lines")
+            res.files.insert(0, by_name["compat-twopass.hal"])
+        main = "".join(f"source {s}\n" for s in sources) + f"simrun {RUN_NS}\n"
+        (work / "compat-main.hal").write_text(main)
+        env = dict(os.environ)
+        env["HAL_INSTANCE"] = "compat-" + uuid.uuid4().hex[:10]
+        env["PATH"] = f"{build_dir() / 'bin'}:{env.get('PATH', '')}"
+        # userspace components written in Python import our hal module
+        env["PYTHONPATH"] = str(build_dir() / "lib" / "python")
+        env.pop("HAL_SIMCLOCK", None)
+        try:
+            r = subprocess.run(
+                [str(halrun), "-S", "-k", "-i", "compat.ini", "-f", "compat-main.hal"],
+                cwd=work,
+                env=env,
+                capture_output=True,
+                text=True,
+                timeout=timeout,
+            )
+            out = r.stdout + "\n" + r.stderr
+            _parse_output(r.stderr + "\n" + r.stdout, by_name, res)
+            if r.returncode not in (0, 1) or "Sanitizer" in out:
+                res.run_error = res.run_error or f"halrun exited with {r.returncode}: {out[-300:]}"
+        except subprocess.TimeoutExpired:
+            res.run_error = f"no result within {timeout:.0f} s"
+            subprocess.run([str(halrun), "-U"], env=env, capture_output=True, timeout=60)
+    except Exception as e:  # a broken configuration is a result, not a crash
+        res.run_error = res.run_error or f"preparation failed: {e}"
+    finally:
+        hw.stop()
+        shutil.rmtree(tmp, ignore_errors=True)
+        res.seconds = time.monotonic() - t0
+    return res
+
+
+# ---- discovery, report, main ------------------------------------------------
+
+
+def find_inis(samples: Path, sets: list[str]) -> list[Path]:
+    out: list[Path] = []
+    for s in sets:
+        for d in sorted(samples.glob(s)):
+            out += sorted(d.rglob("*.ini")) if d.is_dir() else []
+    keep = []
+    for p in out:
+        ini = halprep.parse_ini(p.read_text(errors="replace"))
+        if any(v.split() for v in ini.all("HAL", "HALFILE") + ini.all("HAL", "HALCMD")):
+            keep.append(p)
+    return keep
+
+
+def ensure_linuxcnc(samples: Path) -> None:
+    if samples.exists():
+        return
+    print("compat: LinuxCNC's sample configurations are missing; installing linuxcnc-uspace")
+    cmd = ["apt-get", "install", "-y", "linuxcnc-uspace"]
+    if os.geteuid() != 0:
+        cmd = ["sudo", "-n", *cmd]
+    r = subprocess.run(cmd)
+    if r.returncode != 0 or not samples.exists():
+        print(
+            f"compat: cannot install linuxcnc-uspace (exit {r.returncode}); {samples} missing",
+            file=sys.stderr,
+        )
+        sys.exit(2)
+
+
+def _md(s: str) -> str:
+    return s.replace("|", "\\|").replace("\n", " ")
+
+
+def report(results: list[ConfigResult]) -> str:
+    files = [f for r in results for f in r.files]
+    ok_files = sum(f.status == "loaded" for f in files)
+    lines = [
+        "# make compat: LinuxCNC 2.9 sample configurations on this HAL",
+        "",
+        f"{sum(r.ok for r in results)} of {len(results)} configurations and {ok_files} of"
+        f" {len(files)} HAL files loaded and ran {RUN_NS} (rule: docs/compat.md).",
+        "",
+        "| configuration | HAL file | result | removed | rewritten |",
+        "|---|---|---|---|---|",
+    ]
+    for r in results:
+        for f in r.files:
+            if f.status == "loaded":
+                result = "loaded"
+            else:
+                result = f"**{f.status}** at {_md(f.first_error)}"
+                if f.context:
+                    result += f" ({_md(f.context)})"
+                if f.errors > 1:
+                    result += f" (+{f.errors - 1} more failing lines)"
+            if f.note:
+                result += f"; {_md(f.note)}"
+            rem = ", ".join(f"{k} {v}" for k, v in sorted(f.removed.items()))
+            rew = ", ".join(f"{k} {v}" for k, v in sorted(f.rewritten.items()))
+            lines.append(f"| {r.ini} | {f.name} | {result} | {rem} | {rew} |")
+        if r.run_error:
+            lines.append(f"| {r.ini} | (run) | **failed**: {_md(r.run_error)} | | |")
+        if not r.files:
+            lines.append(f"| {r.ini} | (none) | no HALFILE | | |")
+    lines += ["", "## Failures by first message", ""]
+    causes: dict[str, int] = {}
+    for f in files:
+        if f.status != "loaded":
+            key = re.sub(r"^\S+:\d+: ", "", f.first_error)
+            key = f"{key} ({f.context})" if f.context else key
+            key = re.sub(r"/tmp/cp[^/\s]+/", "<tmp>/", key)
+            causes[key] = causes.get(key, 0) + 1
+    for k, n in sorted(causes.items(), key=lambda kv: -kv[1]):
+        lines.append(f"- {n} × {_md(k)}")
+    lines += ["", "## Everything that failed, by cause (files with at least one such line)", ""]
+    every: dict[str, set[str]] = {}
+    for r in results:
+        for f in r.files:
+            for c in f.causes or ([f.first_error] if f.status != "loaded" else []):
+                every.setdefault(c, set()).add(f"{r.ini}:{f.name}")
+    for c, where in sorted(every.items(), key=lambda kv: (-len(kv[1]), kv[0])):
+        lines.append(f"- {len(where)} × {_md(c)}")
+    post = sorted({p for r in results for p in r.postgui})
+    if post:
+        lines += ["", f"Not run (loaded by the GUI after it starts): {', '.join(post)}."]
+    return "\n".join(lines) + "\n"
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--samples", type=Path, default=SAMPLES)
+    ap.add_argument("--set", action="append", help="glob under sample-configs (repeatable)")
+    ap.add_argument("--only", help="run only INI files whose path contains this text")
+    ap.add_argument("--out", type=Path, default=build_dir() / "compat")
+    ap.add_argument("--timeout", type=float, default=120.0)
+    args = ap.parse_args()
+    ensure_linuxcnc(args.samples)
+    halrun = build_dir() / "bin" / "halrun"
+    if not halrun.exists():
+        print(f"compat: {halrun} is not built (run make)", file=sys.stderr)
+        return 2
+    inis = find_inis(args.samples, args.set or DEFAULT_SETS)
+    if args.only:
+        inis = [p for p in inis if args.only in str(p)]
+    results = []
+    for i, ini in enumerate(inis, 1):
+        r = run_config(ini, args.samples, halrun, args.timeout)
+        results.append(r)
+        state = "ok" if r.ok else "FAILED"
+        print(f"[{i}/{len(inis)}] {r.ini}: {state} ({r.seconds:.1f} s)", flush=True)
+    text = report(results)
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / "report.md").write_text(text)
+    (args.out / "report.json").write_text(json.dumps([asdict(r) for r in results], indent=1))
+    print(text)
+    print(f"compat: report in {args.out / 'report.md'}")
+    return 0 if all(r.ok for r in results) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
