@@ -39,7 +39,13 @@ import vboard  # noqa: E402
 
 SAMPLES = Path("/usr/share/doc/linuxcnc/examples/sample-configs")
 HALLIB = Path("/usr/share/linuxcnc/hallib")
-DEFAULT_SETS = ["by_interface/mesa/hm2-*", "by_interface/pluto", "by_machine/smithy", "sim"]
+DEFAULT_SETS = [
+    "by_interface/mesa/hm2-*",
+    "by_interface/pluto",
+    "by_interface/parport",
+    "by_machine/smithy",
+    "sim",
+]
 VIRTUAL_BOARDS = {"5i20", "5i25", "7i43", "pluto"}
 RUN_NS = "100ms"
 ERROR_LINE = re.compile(r"^(?P<file>[^\s:][^:]*):(?P<line>\d+): (?P<msg>.*)$")
@@ -76,7 +82,8 @@ class ConfigResult:
 
     @property
     def ok(self) -> bool:
-        return not self.run_error and all(f.status == "loaded" for f in self.files)
+        """Everything present loaded (a file the package lacks is not ours)."""
+        return not self.run_error and all(f.status in ("loaded", "absent") for f in self.files)
 
 
 # ---- virtual hardware -------------------------------------------------------
@@ -213,7 +220,8 @@ def _prepare_files(
         res.files.append(fr)
         src, dst = _source_file(name, cfgdir, work)
         if src is None:
-            fr.status, fr.first_error = "failed", f"{name}: file not found"
+            fr.status = "absent"
+            fr.first_error = f"{name}: not in LinuxCNC's package either (LinuxCNC fails here too)"
             continue
         if src.suffix == ".tcl":
             fr.status = "failed"
@@ -320,7 +328,9 @@ def _parse_output(out: str, by_name: dict[str, FileResult], res: ConfigResult) -
         recent = []
 
 
-def run_config(ini_path: Path, samples: Path, halrun: Path, timeout: float) -> ConfigResult:
+def run_config(
+    ini_path: Path, samples: Path, halrun: Path, timeout: float, keep: Path | None = None
+) -> ConfigResult:
     res = ConfigResult(str(ini_path.relative_to(samples)))
     t0 = time.monotonic()
     tmp = Path(tempfile.mkdtemp(prefix="cp"))
@@ -369,6 +379,10 @@ def run_config(ini_path: Path, samples: Path, halrun: Path, timeout: float) -> C
         res.run_error = res.run_error or f"preparation failed: {e}"
     finally:
         hw.stop()
+        if keep is not None and (tmp / "cfg").exists():
+            dest = keep / res.ini
+            shutil.rmtree(dest, ignore_errors=True)
+            shutil.copytree(tmp / "cfg", dest, symlinks=True)
         shutil.rmtree(tmp, ignore_errors=True)
         res.seconds = time.monotonic() - t0
     return res
@@ -411,13 +425,15 @@ def _md(s: str) -> str:
 
 
 def report(results: list[ConfigResult]) -> str:
-    files = [f for r in results for f in r.files]
+    absent = [f for r in results for f in r.files if f.status == "absent"]
+    files = [f for r in results for f in r.files if f.status != "absent"]
     ok_files = sum(f.status == "loaded" for f in files)
     lines = [
         "# make compat: LinuxCNC 2.9 sample configurations on this HAL",
         "",
         f"{sum(r.ok for r in results)} of {len(results)} configurations and {ok_files} of"
-        f" {len(files)} HAL files loaded and ran {RUN_NS} (rule: docs/compat.md).",
+        f" {len(files)} HAL files loaded and ran {RUN_NS} (rule: docs/compat.md);"
+        f" {len(absent)} HAL files named by an INI are not in LinuxCNC's package.",
         "",
         "| configuration | HAL file | result | removed | rewritten |",
         "|---|---|---|---|---|",
@@ -444,7 +460,7 @@ def report(results: list[ConfigResult]) -> str:
     lines += ["", "## Failures by first message", ""]
     causes: dict[str, int] = {}
     for f in files:
-        if f.status != "loaded":
+        if f.status not in ("loaded", "absent"):
             key = re.sub(r"^\S+:\d+: ", "", f.first_error)
             key = f"{key} ({f.context})" if f.context else key
             key = re.sub(r"/tmp/cp[^/\s]+/", "<tmp>/", key)
@@ -455,7 +471,7 @@ def report(results: list[ConfigResult]) -> str:
     every: dict[str, set[str]] = {}
     for r in results:
         for f in r.files:
-            for c in f.causes or ([f.first_error] if f.status != "loaded" else []):
+            for c in f.causes or ([f.first_error] if f.status == "failed" else []):
                 every.setdefault(c, set()).add(f"{r.ini}:{f.name}")
     for c, where in sorted(every.items(), key=lambda kv: (-len(kv[1]), kv[0])):
         lines.append(f"- {len(where)} × {_md(c)}")
@@ -472,6 +488,9 @@ def main() -> int:
     ap.add_argument("--only", help="run only INI files whose path contains this text")
     ap.add_argument("--out", type=Path, default=build_dir() / "compat")
     ap.add_argument("--timeout", type=float, default=120.0)
+    ap.add_argument(
+        "--keep", type=Path, help="keep each prepared configuration under this directory"
+    )
     args = ap.parse_args()
     ensure_linuxcnc(args.samples)
     halrun = build_dir() / "bin" / "halrun"
@@ -483,7 +502,7 @@ def main() -> int:
         inis = [p for p in inis if args.only in str(p)]
     results = []
     for i, ini in enumerate(inis, 1):
-        r = run_config(ini, args.samples, halrun, args.timeout)
+        r = run_config(ini, args.samples, halrun, args.timeout, args.keep)
         results.append(r)
         state = "ok" if r.ok else "FAILED"
         print(f"[{i}/{len(inis)}] {r.ini}: {state} ({r.seconds:.1f} s)", flush=True)

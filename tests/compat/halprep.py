@@ -126,6 +126,7 @@ class Context:
             **{p: "iocontrol" for p in IOCONTROL_PREFIXES},
             **{p: "halui" for p in HALUI_PREFIXES},
             **{p: "GUI" for p in GUI_PREFIXES},
+            **{k + ".": "kinematics" for k in KINEMATICS},
         }
     )
     # components the configuration loads itself: their names are never

@@ -74,6 +74,7 @@ def test_ini() -> None:
         ("loadusr -Wn panel pyvcp -c panel panel.xml", "GUI"),
         ("loadusr -W xyzab-tdr-gui", "GUI"),
         ("net tc iocontrol.0.tool-change => hal_manualtoolchange.change", "iocontrol"),
+        ("setp gantrykins.joint-0 0", "kinematics"),
     ],
 )
 def test_removed(line: str, part: str) -> None:
