@@ -4,6 +4,7 @@ conv.comp.in as its eleven): every pair against a Python model of the rules
 in docs/conv.md, over the edges of each type, with clamp TRUE then FALSE.
 (The eleven 2.9 pairs are checked against 2.9's own output in
 tests/hal/conv_all.)"""
+
 from __future__ import annotations
 
 import math
@@ -21,19 +22,41 @@ RANGE = {"s32": I32, "u32": U32, "s64": I64, "u64": U64, "bit": (0, 1)}
 
 INPUTS: dict[str, list] = {
     "bit": [0, 1, 0],
-    "float": [0.0, 1.0, -1.0, 2.5, -2.5, 1e10, -1e10, 2.0**31, 2.0**32 + 5, 9.2e18, 2.0**63,
-              -(2.0**63), -1e19, 1.5e19, 2.0**64, 1e20, math.nan, math.inf, -math.inf],
+    "float": [
+        0.0,
+        1.0,
+        -1.0,
+        2.5,
+        -2.5,
+        1e10,
+        -1e10,
+        2.0**31,
+        2.0**32 + 5,
+        9.2e18,
+        2.0**63,
+        -(2.0**63),
+        -1e19,
+        1.5e19,
+        2.0**64,
+        1e20,
+        math.nan,
+        math.inf,
+        -math.inf,
+    ],
     "s32": [0, 1, -1, 2, I32[0], I32[1]],
     "u32": [0, 1, 2, 2**31 - 1, 2**31, 2**32 - 1],
     "s64": [0, 1, -1, 2, 2**31 - 1, 2**31, -(2**31) - 1, 2**32 - 1, 2**32, I64[0], I64[1]],
     "u64": [0, 1, 2, 2**31 - 1, 2**31, 2**32 - 1, 2**32, 2**63 - 1, 2**63, U64[1]],
 }
 
-PAIRS = ("bit:s64 bit:u64 float:s64 float:u64 s32:s64 s32:u64 u32:s64 u32:u64 s64:bit "
-         "s64:float s64:s32 s64:u32 s64:u64 u64:bit u64:float u64:s32 u64:u32 u64:s64").split()
+PAIRS = (
+    "bit:s64 bit:u64 float:s64 float:u64 s32:s64 s32:u64 u32:s64 u32:u64 s64:bit "
+    "s64:float s64:s32 s64:u32 s64:u64 u64:bit u64:float u64:s32 u64:u32 u64:s64"
+).split()
 # input can leave the output's range (docs/conv.md): out-of-range pin + clamp
-RANGED = ("float:s64 float:u64 s32:u64 s64:bit s64:s32 s64:u32 s64:u64 u64:bit u64:s32 "
-          "u64:u32 u64:s64").split()
+RANGED = (
+    "float:s64 float:u64 s32:u64 s64:bit s64:s32 s64:u32 s64:u64 u64:bit u64:s32 " "u64:u32 u64:s64"
+).split()
 
 
 def wrap(v: int, t: str) -> int:

@@ -129,3 +129,36 @@ def test_several_files_report_each(tmp_path: Path) -> None:
     assert p.returncode == 1
     assert "a.comp:3:8: error: bad pin type 'bad'" in p.stderr
     assert (tmp_path / "b.c").exists()
+
+
+# (C part after ";;" on line 6, line, column, message fragment)
+MACRO_BAD = [
+    ("function a;\nfunction b;\n", "FUNCTION(a) {}\n", 4, 10, "no FUNCTION(b)"),
+    ("function a;\n", "FUNCTION(a) {}\nFUNCTION(c) {}\n", 6, 1, "FUNCTION(c) but no 'function c;'"),
+    ("function _;\noption extra_setup;\n", "FUNCTION(_) {}\n", 4, 8, "no EXTRA_SETUP()"),
+    ("function _;\n", "FUNCTION(_) {}\n  EXTRA_CLEANUP() {}\n", 6, 3, "without 'option extra_cl"),
+]
+
+
+@pytest.mark.parametrize("decls,code,line,col,msg", MACRO_BAD, ids=[m[4] for m in MACRO_BAD])
+def test_function_macro_errors(decls: str, code: str, line: int, col: int, msg: str) -> None:
+    text = HEAD + decls + ";;\n" + code
+    with pytest.raises(CompError) as e:
+        check(parse_text(text, "t.comp"), expect_name="t")
+    assert str(e.value).startswith(f"t.comp:{line}:{col}: error: "), str(e.value)
+    assert msg in str(e.value)
+
+
+def test_macros_in_comments_do_not_count() -> None:
+    text = (
+        HEAD
+        + 'function _;\n;;\n// EXTRA_SETUP() is not used\nFUNCTION(_) { (void)"FUNCTION(x)"; }\n'
+    )
+    check(parse_text(text, "t.comp"), expect_name="t")
+
+
+def test_binary_file(tmp_path: Path) -> None:
+    (tmp_path / "b.comp").write_bytes(b"component b;\n\xff\xfe\x00;;\n")
+    p = halcompile("b.comp", cwd=tmp_path)
+    assert p.returncode == 1
+    assert p.stderr.startswith("b.comp:1:1: error: not a text file"), p.stderr

@@ -83,3 +83,19 @@ def uses_function_macro(code: str) -> bool:
     """The seed's rule: a one-function component whose C never mentions
     FUNCTION is the body of that function."""
     return "FUNCTION" in code
+
+
+def blank_comments_and_strings(code: str) -> str:
+    """The code with comments and string/char literals replaced by spaces
+    (newlines kept), so searches see only real code at the same offsets."""
+    out = []
+    i = 0
+    while i < len(code):
+        j = _skip_literal(code, i)
+        if j != i:
+            out.append("".join(c if c == "\n" else " " for c in code[i:j]))
+            i = j
+        else:
+            out.append(code[i])
+            i += 1
+    return "".join(out)

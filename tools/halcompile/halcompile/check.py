@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 from .model import KNOWN_OPTIONS, Component, Pos
+from .cbody import blank_comments_and_strings
 from .names import c_name, hal_name, hash_blocks
 from .scanner import CompError
 
@@ -126,7 +127,45 @@ def _check_names(comp: Component) -> None:
             claim_hal(hname, what, pos)
 
 
+def _code_pos(comp: Component, offset: int) -> Pos:
+    line = comp.code_line + comp.code.count("\n", 0, offset)
+    col = offset - (comp.code.rfind("\n", 0, offset) + 1) + 1
+    return Pos(comp.pos.file, line, col)
+
+
+def _check_macros(comp: Component) -> None:
+    """FUNCTION(x) for each declared function and none other; EXTRA_SETUP()
+    / EXTRA_CLEANUP() exactly when their option is given (else the C
+    compiler reports it in generated code, far from the cause)."""
+    code = blank_comments_and_strings(comp.code)
+    defined: dict[str, int] = {}
+    for m in re.finditer(r"\bFUNCTION\s*\(\s*([A-Za-z_][A-Za-z0-9_]*)\s*\)", code):
+        defined.setdefault(m.group(1), m.start())
+    uses_macro = "FUNCTION" in comp.code
+    declared = {c_name(f.name): f for f in comp.functions}
+    if uses_macro and not comp.userspace:
+        for cn, f in declared.items():
+            if cn not in defined:
+                raise CompError(
+                    f.pos, f"function '{f.name}' is declared but the C code has no FUNCTION({cn})"
+                )
+    for cn, off in defined.items():
+        if cn not in declared:
+            raise CompError(
+                _code_pos(comp, off), f"FUNCTION({cn}) but no 'function {cn};' is declared"
+            )
+    for macro, opt in (("EXTRA_SETUP", "extra_setup"), ("EXTRA_CLEANUP", "extra_cleanup")):
+        m = re.search(rf"\b{macro}\s*\(\s*\)", code)
+        if comp.option(opt) and m is None:
+            raise CompError(
+                comp.option_pos[opt], f"option {opt} but the C code has no {macro}() {{ ... }}"
+            )
+        if m is not None and not comp.option(opt):
+            raise CompError(_code_pos(comp, m.start()), f"{macro}() without 'option {opt};'")
+
+
 def _check_functions(comp: Component) -> None:
+    _check_macros(comp)
     if comp.userspace:
         if comp.functions:
             raise CompError(
