@@ -155,13 +155,13 @@ def _check_macros(comp: Component) -> None:
                 _code_pos(comp, off), f"FUNCTION({cn}) but no 'function {cn};' is declared"
             )
     for macro, opt in (("EXTRA_SETUP", "extra_setup"), ("EXTRA_CLEANUP", "extra_cleanup")):
-        m = re.search(rf"\b{macro}\s*\(\s*\)", code)
-        if comp.option(opt) and m is None:
+        mm = re.search(rf"\b{macro}\s*\(\s*\)", code)
+        if comp.option(opt) and mm is None:
             raise CompError(
                 comp.option_pos[opt], f"option {opt} but the C code has no {macro}() {{ ... }}"
             )
-        if m is not None and not comp.option(opt):
-            raise CompError(_code_pos(comp, m.start()), f"{macro}() without 'option {opt};'")
+        if mm is not None and not comp.option(opt):
+            raise CompError(_code_pos(comp, mm.start()), f"{macro}() without 'option {opt};'")
 
 
 def _check_functions(comp: Component) -> None:
