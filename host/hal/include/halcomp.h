@@ -79,7 +79,7 @@ typedef struct {
  * `option rtapi_app no` may load itself through HALCOMP_LOAD(&args) with
  * another count parameter (siggen's num_chan=): count_name, max_count and
  * max_names then replace "count", HALCOMP_MAX_COUNT and HALCOMP_MAX_NAMES
- * (0/NULL: the defaults). */
+ * (0/NULL: the defaults; larger values are limited to them). */
 typedef struct {
     int count;
     char *const *names;     /* max_names entries, unset ones NULL */

@@ -134,8 +134,11 @@ static int resolve(const halcomp_desc_t *d, const halcomp_args_t *a,
                                                out);
     }
     const char *cname = a->count_name ? a->count_name : "count";
-    int max_count = a->max_count > 0 ? a->max_count : HALCOMP_MAX_COUNT;
-    int max_names = a->max_names > 0 ? a->max_names : HALCOMP_MAX_NAMES;
+    /* never more than the instance table of halcomp_load holds */
+    int max_count = a->max_count > 0 && a->max_count < HALCOMP_MAX_COUNT ? a->max_count
+                                                                         : HALCOMP_MAX_COUNT;
+    int max_names = a->max_names > 0 && a->max_names < HALCOMP_MAX_NAMES ? a->max_names
+                                                                         : HALCOMP_MAX_NAMES;
     int count = a->count;
     if (count == 0 && !(d->has_names && a->names && a->names[0] && a->names[0][0]))
         count = d->default_count;
