@@ -148,3 +148,40 @@ def test_in_pins_are_read_only(tmp_path: Path) -> None:
     p = halcompile("--compile", "ro.comp", cwd=tmp_path)
     assert p.returncode == 1
     assert re.search(r"ro\.comp:6:\d+: error: lvalue required", p.stderr), p.stderr
+
+
+PASSTHROUGH = """#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-2.0-or-later
+import time
+import hal
+
+h = hal.component("passthrough")
+h.newpin("in", hal.HAL_FLOAT, hal.HAL_IN)
+h.newpin("out", hal.HAL_FLOAT, hal.HAL_OUT)
+h.ready()
+try:
+    while 1:
+        time.sleep(0.01)
+        h["out"] = h["in"]
+except KeyboardInterrupt:
+    raise SystemExit
+"""
+
+
+def test_install_python_userspace(tmp_path: Path) -> None:
+    """The seed's passthrough Python component installed as a program."""
+    from hcomp_util import hal_env, halrun, pins
+
+    (tmp_path / "passthrough.py").write_text(PASSTHROUGH)
+    env = hal_env()
+    env["HALCOMPILE_BINDIR"] = str(tmp_path / "bin")
+    p = halcompile("--install", "passthrough.py", cwd=tmp_path, env=env)
+    assert p.returncode == 1 and "only be installed with --userspace" in p.stderr
+    p = halcompile("--install", "--userspace", "passthrough.py", cwd=tmp_path, env=env)
+    assert p.returncode == 0, p.stderr
+    prog = tmp_path / "bin" / "passthrough"
+    assert prog.stat().st_mode & 0o111
+    hal = f"loadusr -Wn passthrough {prog}\nsetp passthrough.in 3.14\nloadusr -w sleep 0.2\nshow pin\n"
+    p = halrun(hal, tmp_path, env)
+    assert p.returncode == 0, p.stderr
+    assert pins(p.stdout)["passthrough.out"] == ("float", "OUT", "3.14")

@@ -7,6 +7,7 @@
     halcompile --document [-o OUT.md] FILE.comp          man page (docs/ markdown)
     halcompile --print-modinfo FILE.comp                 what the module offers
     halcompile --compile --userspace FILE.c              a userspace program from C
+    halcompile --install --userspace FILE.py             a Python component as a program
 
 See docs/halcompile.md.
 """
@@ -124,6 +125,9 @@ def _one(args: argparse.Namespace, f: Path) -> None:
 
     if not f.exists():
         raise OSError(2, f"{f}: no such file")
+    if f.suffix == ".py":
+        _install_python(args, f)
+        return
     is_c = f.suffix == ".c"
     if is_c and not (args.compile or args.install):
         raise build.BuildError(f"{f}: a .c file can only be compiled or installed")
@@ -147,6 +151,17 @@ def _one(args: argparse.Namespace, f: Path) -> None:
         preprocess(f, args.output or Path(f"{comp.name}.c"))
         return
     _compile_install(args, f, is_c)
+
+
+def _install_python(args: argparse.Namespace, f: Path) -> None:
+    """LinuxCNC's `halcompile --install --userspace file.py`: the script
+    becomes the program NAME (no .py) in the bin folder."""
+    if not (args.install and args.userspace):
+        raise build.BuildError(f"{f}: a Python file can only be installed with --userspace")
+    cfg = build.Config.from_env()
+    dest = cfg.user_bindir() if args.user else cfg.bindir
+    final = build.install_file(f, dest, stem(f), 0o755)
+    print(f"halcompile: installed {final}")
 
 
 def _compile_install(args: argparse.Namespace, f: Path, is_c: bool) -> None:
