@@ -1,0 +1,159 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""`make compat` end to end on configurations written here (not LinuxCNC's):
+preparation, virtual boards and ports, one halrun session per INI, error
+lines mapped to their files, the report and the exit status."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(HERE))
+import compat  # noqa: E402
+
+GOOD_INI = """
+[EMCMOT]
+EMCMOT = motmod
+BASE_PERIOD = 50000
+SERVO_PERIOD = 1000000
+[KINS]
+KINEMATICS = trivkins
+JOINTS = 1
+[HOSTMOT2]
+DRIVER = hm2_pci
+CONFIG = "firmware=hm2/5i20/SVST8_4.BIT num_encoders=1 num_pwmgens=1 num_stepgens=1"
+[HAL]
+HALFILE = good.hal
+HALFILE = absent.hal
+HALCMD = setp parport.0.pin-02-out 1
+POSTGUI_HALFILE = panel.hal
+"""
+
+GOOD_HAL = """# a configuration as LinuxCNC's sample configs write them
+loadrt [KINS]KINEMATICS
+loadrt [EMCMOT]EMCMOT base_period_nsec=[EMCMOT]BASE_PERIOD servo_period_nsec=[EMCMOT]SERVO_PERIOD num_joints=[KINS]JOINTS
+loadrt hostmot2
+loadrt [HOSTMOT2]DRIVER config=[HOSTMOT2]CONFIG
+loadrt hal_parport cfg="0x378 out"
+loadrt and2 count=1
+addf parport.0.read base-thread
+addf parport.0.write base-thread
+addf motion-command-handler servo-thread
+addf motion-controller servo-thread
+addf hm2_5i20.0.read servo-thread
+addf and2.0 servo-thread
+addf hm2_5i20.0.write servo-thread
+net xstep joint.0.motor-pos-cmd => hm2_5i20.0.stepgen.00.position-cmd
+net both and2.0.out => parport.0.pin-14-out
+net in0 parport.0.pin-11-in => and2.0.in0 \\
+    <= joint.0.home-sw-in
+setp axis.x.jog-scale 1
+loadusr -W hal_manualtoolchange
+net tool-change iocontrol.0.tool-change => hal_manualtoolchange.change
+"""
+
+BAD_INI = """
+[HAL]
+HALFILE = bad.hal
+HALFILE = LIB:basic_sim.tcl
+"""
+
+BAD_HAL = """loadrt threads name1=servo-thread period1=1000000
+loadrt nosuch_component
+setp nosuch_component.0.x 1
+loadrt and2 count=1
+addf and2.0 servo-thread
+"""
+
+
+Run = tuple[int, str, list[dict[str, object]], Path]
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, list[dict[str, object]], Path]:
+    for p in (compat.build_dir() / "bin" / n for n in ("halrun", "vboard", "vparport")):
+        assert p.exists(), f"{p} is not built (run make)"
+    base = tmp_path_factory.mktemp("compat")
+    samples = base / "samples"
+    for d, ini, hal in (("good", GOOD_INI, GOOD_HAL), ("bad", BAD_INI, BAD_HAL)):
+        cfg = samples / "set" / d
+        cfg.mkdir(parents=True)
+        (cfg / f"{d}.ini").write_text(ini)
+        (cfg / f"{d}.hal").write_text(hal)
+    (samples / "other" / "x").mkdir(parents=True)
+    (samples / "other" / "x" / "x.ini").write_text("[HAL]\nHALFILE = x.hal\n")
+    out = base / "out"
+    r = subprocess.run(
+        [sys.executable, str(HERE / "compat.py"), "--samples", str(samples), "--set", "set/*"]
+        + ["--out", str(out), "--keep", str(base / "kept")],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    data = json.loads((out / "report.json").read_text())
+    return r.returncode, (out / "report.md").read_text(), data, base
+
+
+def test_exit_status_and_only_the_chosen_set(run: Run) -> None:
+    rc, text, data, _ = run
+    assert rc == 1, text  # bad.ini fails
+    assert [d["ini"] for d in data] == ["set/bad/bad.ini", "set/good/good.ini"]
+
+
+def test_good_configuration_loads(run: Run) -> None:
+    """Motion, kinematics and iocontrol lines out, the board and the port
+    virtual, HALCMD run: every present file loads; the absent one is named."""
+    _, text, data, _ = run
+    good = data[1]
+    files = {f["name"]: f for f in good["files"]}  # type: ignore[union-attr]
+    assert files["good.hal"]["status"] == "loaded", files["good.hal"]
+    assert files["HALCMD"]["status"] == "loaded"
+    assert files["absent.hal"]["status"] == "absent"
+    assert good["run_error"] == ""
+    assert good["hardware"] == ["vboard 5i20", "vparport"]
+    assert good["postgui"] == ["panel.hal"]
+    assert files["good.hal"]["removed"] == {"kinematics": 1, "motion": 3, "iocontrol": 2}
+    assert files["good.hal"]["rewritten"] == {"board": 2, "motion": 3}
+    assert "| set/good/good.ini | good.hal | loaded |" in text
+
+
+def test_bad_configuration_names_file_line_and_cause(run: Run) -> None:
+    _, text, data, _ = run
+    files = {f["name"]: f for f in data[0]["files"]}  # type: ignore[union-attr]
+    bad = files["bad.hal"]
+    assert bad["status"] == "failed"
+    assert bad["first_error"] == "bad.hal:2: insmod for nosuch_component failed, returned -1"
+    assert "nosuch_component.so" in bad["context"]
+    assert bad["errors"] == 2
+    assert bad["causes"] == [
+        "component nosuch_component",
+        "a pin, parameter, signal or function that does not exist (often a consequence)",
+    ]
+    tcl = files["LIB:basic_sim.tcl"]
+    assert tcl["status"] == "failed" and "Tcl HAL file" in tcl["first_error"]
+    assert "- 1 × component nosuch_component" in text
+
+
+def test_prepared_files_keep_their_lines(run: Run) -> None:
+    """--keep: the prepared file has the original's lines, removed ones as
+    comments, rewritten ones in place."""
+    base = run[3]
+    prepared = (base / "kept" / "set" / "good" / "good.ini" / "good.hal").read_text().split("\n")
+    original = GOOD_HAL.split("\n")
+    assert len(prepared) == len(original)
+    assert prepared[1].startswith("#compat: removed (kinematics: loadrt trivkins)")
+    assert prepared[2].startswith(
+        "loadrt threads name1=base-thread period1=[EMCMOT]BASE_PERIOD fp1=0 "
+        "name2=servo-thread period2=[EMCMOT]SERVO_PERIOD fp2=1"
+    )
+    assert prepared[4].startswith("loadrt hm2_sim socket=") and "board=5i20" in prepared[4]
+    assert 'cfg="sim:' in prepared[5]
+    assert prepared[14].startswith("net xstep => hm2_5i20.0.stepgen.00.position-cmd")
+    assert prepared[16].startswith("net in0 parport.0.pin-11-in => and2.0.in0  #compat")
+    assert prepared[17] == "#compat: (continued)"
