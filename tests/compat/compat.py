@@ -210,6 +210,11 @@ def _prepare_files(
     """Prepared copies in work; the source lines of the session; the
     results by the name the session's error lines will use."""
     ctx = halprep.Context()
+    for p in sorted(cfgdir.iterdir()):
+        if p.is_file() and p.stat().st_size < 1 << 20:
+            part = halprep.program_part(p.read_text(errors="replace"))
+            if part:
+                ctx.programs[p.name] = part
     sources: list[str] = []
     by_name: dict[str, FileResult] = {}
     for entry in ini.all("HAL", "HALFILE"):

@@ -132,6 +132,9 @@ class Context:
     # components the configuration loads itself: their names are never
     # taken as removed prefixes (a user component called "spindle")
     own: set[str] = field(default_factory=set)
+    # programs of the configuration that belong to a removed part
+    # (see program_part), by name
+    programs: dict[str, str] = field(default_factory=dict)
 
     def owner(self, name: str) -> str | None:
         """The removed part a pin/param/function name belongs to, or None."""
@@ -190,6 +193,23 @@ def _loadusr_program(words: list[str]) -> tuple[str, str | None]:
     if base in ("python", "python3") and rest:
         base = rest[0].rsplit("/", 1)[-1]
     return base, name
+
+
+VISMACH = re.compile(r"^\s*(import|from)\s+vismach\b", re.M)
+LINUXCNC_MODULE = re.compile(r"^\s*import\s+([\w, ]*\b)?linuxcnc\b", re.M)
+
+
+def program_part(text: str) -> str | None:
+    """The removed part a program of a configuration belongs to, from its
+    source: a vismach machine view is a GUI; a program that imports the
+    `linuxcnc` module talks to LinuxCNC's task and motion controller."""
+    if not text.startswith("#!"):
+        return None
+    if VISMACH.search(text):
+        return "GUI"
+    if LINUXCNC_MODULE.search(text):
+        return "motion"
+    return None
 
 
 def motmod_threads(orig_words: list[str], res_words: list[str]) -> str:
@@ -266,8 +286,10 @@ def classify(line: str, ini: Ini, ctx: Context) -> Action:
         return KEEP
     if cmd == "loadusr" and len(flat) > 1:
         prog, name = _loadusr_program(flat)
-        part = None
-        if prog in IOCONTROL_PROGRAMS:
+        part = ctx.programs.get(prog)
+        if part:
+            pass
+        elif prog in IOCONTROL_PROGRAMS:
             part = "iocontrol"
         elif prog in HALUI_PROGRAMS:
             part = "halui"

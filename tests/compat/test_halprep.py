@@ -191,3 +191,16 @@ def test_twopass_merge() -> None:
         ]
     )
     assert merged == ["loadrt pid names=a,b,c", "loadrt and2 count=3", "loadrt hostmot2"]
+
+
+def test_programs_of_the_configuration() -> None:
+    """A vismach view is a GUI, a program importing linuxcnc belongs to the
+    task/motion controller; both are removed with their pins."""
+    assert hp.program_part("#!/usr/bin/env python3\nfrom vismach import *\n") == "GUI"
+    assert hp.program_part("#!/usr/bin/python3\nimport sys, linuxcnc, hal\n") == "motion"
+    assert hp.program_part("#!/usr/bin/python3\nimport hal\n") is None
+    assert hp.program_part("import vismach\n") is None  # not a program
+    ctx = hp.Context()
+    ctx.programs["mill"] = "GUI"
+    assert act("loadusr -W ./mill", ctx).part == "GUI"
+    assert act("net x mill.x <= and2.0.out", ctx).text == "net x <= and2.0.out"
