@@ -318,7 +318,7 @@ static int open_ports(struct hp_state *st, const struct pp_cfg *c)
         if (hp->port.note[0])
             rtapi_print_msg(RTAPI_MSG_INFO, "hal_parport: %s\n", hp->port.note);
         pin_sets(c->port[i].mode, &hp->out_mask, &hp->in_mask);
-        rtapi_print_msg(RTAPI_MSG_INFO, "hal_parport: port %d: %s (%s), type %s\n", i,
+        rtapi_print_msg(RTAPI_MSG_DBG, "hal_parport: port %d: %s (%s), type %s\n", i,
                         hp->port.name, hp->port.kind, pp_mode_name(c->port[i].mode));
     }
     return 0;

@@ -33,6 +33,8 @@ struct raw_priv {
     unsigned long base;
     long ecr;     /* ECR base (register at ecr+2), -1: none used */
     int claim_fd; /* ppdev claim held while raw I/O runs, -1 none */
+    pthread_mutex_t lock; /* guards threads[]: functions of one port may run
+                             in several HAL threads */
     pthread_t threads[RAW_MAX_THREADS];
     int n_threads;
 };
@@ -49,15 +51,17 @@ static int raw_begin(struct pp_port *p)
 {
     struct raw_priv *r = p->priv;
     pthread_t self = pthread_self();
+    int e = 0;
+    pthread_mutex_lock(&r->lock);
     for (int i = 0; i < r->n_threads; i++)
         if (pthread_equal(r->threads[i], self))
-            return 0;
-    int e = grant(r);
-    if (e)
-        return e;
-    if (r->n_threads < RAW_MAX_THREADS)
+            goto out;
+    e = grant(r);
+    if (!e && r->n_threads < RAW_MAX_THREADS)
         r->threads[r->n_threads++] = self;
-    return 0;
+out:
+    pthread_mutex_unlock(&r->lock);
+    return e;
 }
 
 static int raw_read_data(struct pp_port *p, uint8_t *v)
@@ -107,6 +111,7 @@ static void raw_close(struct pp_port *p)
         r->sys.ioctl(r->sys.ctx, r->claim_fd, PPRELEASE, NULL);
         r->sys.close(r->sys.ctx, r->claim_fd);
     }
+    pthread_mutex_destroy(&r->lock);
     free(r);
     p->priv = NULL;
 }
@@ -168,6 +173,7 @@ int pp_raw_open(struct pp_port *p, const struct epp_raw_io *io, const struct epp
         return -ENOMEM;
     }
     r->io = *io;
+    pthread_mutex_init(&r->lock, NULL);
     if (sys)
         r->sys = *sys;
     r->base = base;
