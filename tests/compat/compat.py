@@ -480,6 +480,17 @@ def report(results: list[ConfigResult]) -> str:
                 every.setdefault(c, set()).add(f"{r.ini}:{f.name}")
     for c, where in sorted(every.items(), key=lambda kv: (-len(kv[1]), kv[0])):
         lines.append(f"- {len(where)} × {_md(c)}")
+    boards: dict[str, int] = {}
+    for f in [f for r in results for f in r.files]:
+        for m in re.finditer(r"no virtual board for '([^']+)'", f.note):
+            boards[m.group(1)] = boards.get(m.group(1), 0) + 1
+    if boards:
+        lines += [
+            "",
+            "Boards without a virtual board (their driver line runs as written): "
+            + ", ".join(f"{b} ({n} files)" for b, n in sorted(boards.items()))
+            + ".",
+        ]
     post = sorted({p for r in results for p in r.postgui})
     if post:
         lines += ["", f"Not run (loaded by the GUI after it starts): {', '.join(post)}."]
