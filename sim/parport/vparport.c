@@ -202,7 +202,9 @@ static int cmd_log(struct vpp_state *st, int argc, char **argv)
     }
     if (!sel)
         sel = VPP_ALL_PINS;
-    static struct vpp_log_entry buf[VPP_LOG_LEN];
+    struct vpp_log_entry *buf = malloc(VPP_LOG_LEN * sizeof(*buf));
+    if (!buf)
+        return fail("out of memory");
     uint64_t first;
     size_t n = vpp_log_read(st, from, buf, VPP_LOG_LEN, &first);
     uint32_t prev = 0;
@@ -216,6 +218,7 @@ static int cmd_log(struct vpp_state *st, int argc, char **argv)
                 printf(" %d=%u", p, (buf[i].pins >> p) & 1u);
         printf("\n");
     }
+    free(buf);
     return 0;
 }
 
