@@ -12,8 +12,6 @@ import csv
 import struct
 from pathlib import Path
 
-DATA = Path(__file__).resolve().parents[1] / "unit" / "driver" / "data"
-
 # board -> (connectors, port width, clock low, clock high, fpga size, pins)
 BOARDS = {
     "5i20": (["P2", "P3", "P4"], 24, 33_333_333, 100_000_000, "MESA5I20"),
@@ -27,8 +25,7 @@ PINMAPS = Path(__file__).resolve().parents[1] / "data" / "pinmaps"
 
 
 def read_csv(name: str) -> list[dict[str, str]]:
-    path = DATA / name if (DATA / name).exists() else PINMAPS / name
-    with open(path, newline="") as f:
+    with open(PINMAPS / name, newline="") as f:
         return list(csv.DictReader(f))
 
 

@@ -53,7 +53,7 @@ def halrun(tmp_path: Path, script: str, *opts: str) -> subprocess.CompletedProce
     f = tmp_path / "test.hal"
     f.write_text(script)
     env = dict(os.environ)
-    env["HAL_INSTANCE"] = "h6-" + uuid.uuid4().hex[:10]
+    env["HAL_INSTANCE"] = "hm2-hal-" + uuid.uuid4().hex[:10]
     env["HM_BUILD"] = str(BUILD)
     return subprocess.run([str(HALRUN), *opts, "-f", str(f)], capture_output=True, text=True,
                           timeout=120, env=env, cwd=tmp_path)

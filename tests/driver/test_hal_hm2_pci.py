@@ -72,7 +72,7 @@ def halrun(tmp_path: Path, root: Path, script: str, *opts: str) -> subprocess.Co
     f = tmp_path / "test.hal"
     f.write_text(script)
     env = dict(os.environ)
-    env["HAL_INSTANCE"] = "hD-" + uuid.uuid4().hex[:10]
+    env["HAL_INSTANCE"] = "hm2-pci-" + uuid.uuid4().hex[:10]
     env["HM_BUILD"] = str(BUILD)
     env["HM2_PCI_SYSFS_ROOT"] = str(root)
     env["HM2_FIRMWARE_PATH"] = str(tmp_path / "fw")

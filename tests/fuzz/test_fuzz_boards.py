@@ -32,7 +32,6 @@ HM2CORE = [
     DRV / "llio" / "llio_image.c",
     *(DRV / "hostmot2" / f"{n}.c"
       for n in ("msg", "names", "config", "idrom", "md", "pins", "bitfile", "probe", "math")),
-    DRV / "hm2_test" / "patterns.c",
 ]
 C_FLAGS = ["-I", str(DRV / "include"), "-I", str(ROOT / "host" / "hal" / "include")]
 CXX_FLAGS = ["-std=c++17", "-I", str(VB / "src"), "-I", str(VB / "include"), "-I", str(VB / "epp")]

@@ -211,3 +211,22 @@ int epp_gpiod_open(epp_port_t *port, const struct epp_gpio_lines *lines, uint32_
     epp_port_init(port, &gpiod_backend, p, name, 0);
     return 0;
 }
+
+/* ---- the gpiod:CHIP:LINES[:OPTS] port kind ---- */
+
+static int gpiod_open_spec(epp_port_t *port, const char *arg, const char *spec, int wide,
+                           char *err, size_t errlen)
+{
+    (void)wide; /* bit-banged: one byte per cycle */
+    struct epp_gpio_lines lines;
+    uint32_t timeout_ns = 10000;
+    int r = epp_gpiod_lines_open(&lines, arg, &timeout_ns, err, errlen);
+    if (r)
+        return r;
+    r = epp_gpiod_open(port, &lines, timeout_ns, spec, err, errlen);
+    if (r)
+        lines.close(lines.ctx);
+    return r;
+}
+
+const struct epp_port_kind epp_gpiod_kind = {"gpiod", "gpiod:CHIP:LINES", gpiod_open_spec};

@@ -296,19 +296,6 @@ void epp_port_close(epp_port_t *port)
 
 /* ---- opening from the drivers' modparams ------------------------------- */
 
-static int parse_ulong(const char *s, unsigned long *out)
-{
-    char *end;
-    if (!s || !*s)
-        return -EINVAL;
-    errno = 0;
-    unsigned long v = strtoul(s, &end, 0);
-    if (errno || *end || s[0] == '-')
-        return -EINVAL;
-    *out = v;
-    return 0;
-}
-
 /* ioaddr < 16 is a Linux parport number, as LinuxCNC's uspace rtapi does:
  * its I/O addresses are in /proc/sys/dev/parport/parportN/base-addr. */
 static int parport_base(long num, unsigned long *base, unsigned long *hi, char *err,
@@ -334,6 +321,26 @@ static int parport_base(long num, unsigned long *base, unsigned long *hi, char *
     return 0;
 }
 
+/* "kind:ARG": the kind's backend opens it (epp_port_kinds). */
+static int open_spec(epp_port_t *port, const char *spec, int wide, char *err, size_t errlen)
+{
+    for (size_t i = 0; i < epp_num_port_kinds; i++) {
+        const struct epp_port_kind *k = epp_port_kinds[i];
+        size_t n = strlen(k->prefix);
+        if (strncmp(spec, k->prefix, n) == 0 && spec[n] == ':')
+            return k->open(port, spec + n + 1, spec, wide, err, errlen);
+    }
+    char want[256] = "";
+    size_t len = 0;
+    for (size_t i = 0; i < epp_num_port_kinds && len < sizeof(want); i++) {
+        const char *sep = i == 0 ? "" : i + 1 == epp_num_port_kinds ? " or " : ", ";
+        len += (size_t)snprintf(want + len, sizeof(want) - len, "%s%s", sep,
+                                epp_port_kinds[i]->usage);
+    }
+    snprintf(err, errlen, "port '%s': unknown port kind (want %s)", spec, want);
+    return -EINVAL;
+}
+
 int epp_port_open(epp_port_t *port, const char *spec, long ioaddr, long ioaddr_hi, int wide,
                   char *err, size_t errlen)
 {
@@ -343,62 +350,8 @@ int epp_port_open(epp_port_t *port, const char *spec, long ioaddr, long ioaddr_h
 
     if (!port)
         return -EINVAL;
-    if (spec && *spec) {
-        if (strncmp(spec, "ppdev:", 6) == 0) {
-            if (!spec[6]) {
-                snprintf(err, errlen, "port '%s': missing device path (ppdev:/dev/parport0)",
-                         spec);
-                return -EINVAL;
-            }
-            return epp_ppdev_open(port, &epp_ppdev_sys_libc, spec + 6, wide, err, errlen);
-        }
-        if (strncmp(spec, "sim:", 4) == 0) {
-            if (!spec[4]) {
-                snprintf(err, errlen, "port '%s': missing socket path (sim:/tmp/vb.sock)", spec);
-                return -EINVAL;
-            }
-            return epp_sim_open(port, spec + 4, wide, err, errlen);
-        }
-        if (strncmp(spec, "gpiod:", 6) == 0) {
-            struct epp_gpio_lines lines;
-            uint32_t timeout_ns = 10000;
-            r = epp_gpiod_lines_open(&lines, spec + 6, &timeout_ns, err, errlen);
-            if (r)
-                return r;
-            r = epp_gpiod_open(port, &lines, timeout_ns, spec, err, errlen);
-            if (r)
-                lines.close(lines.ctx);
-            return r;
-        }
-        if (strncmp(spec, "raw:", 4) == 0) {
-            char tmp[64];
-            snprintf(tmp, sizeof(tmp), "%s", spec + 4);
-            char *comma = strchr(tmp, ',');
-            if (comma)
-                *comma++ = '\0';
-            if (parse_ulong(tmp, &base) || base == 0 || base > 0xFFFF) {
-                snprintf(err, errlen, "port '%s': bad I/O address '%s'", spec, tmp);
-                return -EINVAL;
-            }
-            hi_arg = (long)base + 0x400;
-            if (comma) {
-                if (strcmp(comma, "none") == 0 || strcmp(comma, "-1") == 0) {
-                    hi_arg = -1;
-                } else if (parse_ulong(comma, &hi) || hi > 0xFFFF) {
-                    snprintf(err, errlen, "port '%s': bad ECR base '%s'", spec, comma);
-                    return -EINVAL;
-                } else {
-                    hi_arg = hi ? (long)hi : (long)base + 0x400;
-                }
-            }
-            return epp_raw_open(port, &epp_raw_sys_io, base, hi_arg, wide, err, errlen);
-        }
-        snprintf(err, errlen,
-                 "port '%s': unknown port kind (want raw:ADDR, ppdev:DEV, gpiod:CHIP:LINES or "
-                 "sim:SOCKET)",
-                 spec);
-        return -EINVAL;
-    }
+    if (spec && *spec)
+        return open_spec(port, spec, wide, err, errlen);
     if (ioaddr < 0 || ioaddr > 0xFFFF) {
         snprintf(err, errlen, "ioaddr=%ld is not a parallel port address or number", ioaddr);
         return -EINVAL;

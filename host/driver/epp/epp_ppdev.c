@@ -226,3 +226,17 @@ fail_close:
     sys->close(sys->ctx, fd);
     return r;
 }
+
+/* ---- the ppdev:DEVICE port kind ---- */
+
+static int ppdev_open_spec(epp_port_t *port, const char *arg, const char *spec, int wide,
+                           char *err, size_t errlen)
+{
+    if (!*arg) {
+        snprintf(err, errlen, "port '%s': missing device path (ppdev:/dev/parport0)", spec);
+        return -EINVAL;
+    }
+    return epp_ppdev_open(port, &epp_ppdev_sys_libc, arg, wide, err, errlen);
+}
+
+const struct epp_port_kind epp_ppdev_kind = {"ppdev", "ppdev:DEV", ppdev_open_spec};

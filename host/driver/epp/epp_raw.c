@@ -225,3 +225,47 @@ int epp_raw_open(epp_port_t *port, const struct epp_raw_io *io, unsigned long ba
     port->has_ecr = base_hi >= 0;
     return 0;
 }
+
+/* ---- the raw:ADDR[,ECR] port kind ---- */
+
+static int parse_ulong(const char *s, unsigned long *out)
+{
+    char *end;
+    if (!s || !*s)
+        return -EINVAL;
+    errno = 0;
+    unsigned long v = strtoul(s, &end, 0);
+    if (errno || *end || s[0] == '-')
+        return -EINVAL;
+    *out = v;
+    return 0;
+}
+
+static int raw_open_spec(epp_port_t *port, const char *arg, const char *spec, int wide, char *err,
+                         size_t errlen)
+{
+    unsigned long base, hi;
+    char tmp[64];
+    snprintf(tmp, sizeof(tmp), "%s", arg);
+    char *comma = strchr(tmp, ',');
+    if (comma)
+        *comma++ = '\0';
+    if (parse_ulong(tmp, &base) || base == 0 || base > 0xFFFF) {
+        snprintf(err, errlen, "port '%s': bad I/O address '%s'", spec, tmp);
+        return -EINVAL;
+    }
+    long hi_arg = (long)base + 0x400;
+    if (comma) {
+        if (strcmp(comma, "none") == 0 || strcmp(comma, "-1") == 0) {
+            hi_arg = -1;
+        } else if (parse_ulong(comma, &hi) || hi > 0xFFFF) {
+            snprintf(err, errlen, "port '%s': bad ECR base '%s'", spec, comma);
+            return -EINVAL;
+        } else {
+            hi_arg = hi ? (long)hi : (long)base + 0x400;
+        }
+    }
+    return epp_raw_open(port, &epp_raw_sys_io, base, hi_arg, wide, err, errlen);
+}
+
+const struct epp_port_kind epp_raw_kind = {"raw", "raw:ADDR", raw_open_spec};

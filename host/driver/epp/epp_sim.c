@@ -138,3 +138,17 @@ fail:
     free(s);
     return r;
 }
+
+/* ---- the sim:SOCKET port kind ---- */
+
+static int sim_open_spec(epp_port_t *port, const char *arg, const char *spec, int wide,
+                         char *err, size_t errlen)
+{
+    if (!*arg) {
+        snprintf(err, errlen, "port '%s': missing socket path (sim:/tmp/vb.sock)", spec);
+        return -EINVAL;
+    }
+    return epp_sim_open(port, arg, wide, err, errlen);
+}
+
+const struct epp_port_kind epp_sim_kind = {"sim", "sim:SOCKET", sim_open_spec};

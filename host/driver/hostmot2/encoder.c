@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "hm2_hal.h"
+#include "module_api.h"
 
 enum { REG_COUNT = 0, REG_CCR = 1, REG_TSDIV = 2, REG_TSCOUNT = 3, REG_QFILTER = 4 };
 
@@ -110,7 +110,7 @@ static int export_instance(hostmot2_t *hm2, int i, struct enc_hal *h, bool probe
     return 0;
 }
 
-int hm2_encoder_setup(hostmot2_t *hm2)
+static int encoder_setup(hostmot2_t *hm2)
 {
     const struct hm2_module *m = hm2->encoder.present ? &hm2->encoder : &hm2->muxed_encoder;
     bool muxed = !hm2->encoder.present;
@@ -227,7 +227,7 @@ static void write_controls(hostmot2_t *hm2, bool force)
     }
 }
 
-void hm2_encoder_force_write(hostmot2_t *hm2)
+static void encoder_force_write(hostmot2_t *hm2)
 {
     if (!hm2->encoder_s)
         return;
@@ -235,7 +235,7 @@ void hm2_encoder_force_write(hostmot2_t *hm2)
     write_controls(hm2, true);
 }
 
-void hm2_encoder_write_changed(hostmot2_t *hm2)
+static void encoder_write_changed(hostmot2_t *hm2)
 {
     if (!hm2->encoder_s)
         return;
@@ -243,7 +243,7 @@ void hm2_encoder_write_changed(hostmot2_t *hm2)
     write_controls(hm2, false);
 }
 
-void hm2_encoder_process_read(hostmot2_t *hm2, long period)
+static void encoder_process_read(hostmot2_t *hm2, long period)
 {
     struct hm2_encoder_state *s = hm2->encoder_s;
     (void)period;
@@ -287,10 +287,19 @@ void hm2_encoder_process_read(hostmot2_t *hm2, long period)
     }
 }
 
-void hm2_encoder_cleanup(hostmot2_t *hm2)
+static void encoder_cleanup(hostmot2_t *hm2)
 {
     if (hm2->encoder_s)
         free(hm2->encoder_s->inst);
     free(hm2->encoder_s);
     hm2->encoder_s = NULL;
 }
+
+const struct hm2_module_ops hm2_encoder_ops = {
+    .name = "encoder",
+    .setup = encoder_setup,
+    .process_read = encoder_process_read,
+    .write_changed = encoder_write_changed,
+    .force_write = encoder_force_write,
+    .cleanup = encoder_cleanup,
+};

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "hm2_hal.h"
+#include "modules.h"
 
 /* What the exported functions get as their argument: a small block in HAL
  * memory that outlives the board, so a function that runs once more after
@@ -14,64 +15,52 @@ struct hm2_funct_handle {
     hostmot2_t *volatile board;
 };
 
-void *hm2_hal_zalloc(hostmot2_t *hm2, size_t size, const char *what)
-{
-    void *p = hal_malloc((long)size);
-    if (!p) {
-        hm2_msg(hm2, HM2_ERR, "out of HAL memory allocating %s (%zu bytes)", what, size);
-        return NULL;
-    }
-    memset(p, 0, size);
-    return p;
-}
-
-int hm2_write_cfg(hostmot2_t *hm2, uint32_t addr, uint32_t val)
-{
-    int r = hm2_write_reg(hm2, addr, val);
-    if (r) {
-        hm2_msg(hm2, HM2_ERR, "error writing 0x%08X to register 0x%04X: %s", val, addr,
-                strerror(-r));
-        hm2->needs_reset = true;
-    }
-    return r;
-}
-
-int hm2_hal_fail(hostmot2_t *hm2, int r, const char *what)
-{
-    hm2_msg(hm2, HM2_ERR, "error %d (%s) exporting %s.%s to HAL", r, strerror(-r),
-            hm2->llio->name, what);
-    return r;
-}
-
+/* The module phases, walked over the module table (modules.c) in its
+ * order; cleanup in reverse. */
 static void cleanup_modules(hostmot2_t *hm2)
 {
-    hm2_raw_cleanup(hm2);
-    hm2_led_cleanup(hm2);
-    hm2_pwmgen_cleanup(hm2);
-    hm2_stepgen_cleanup(hm2);
-    hm2_encoder_cleanup(hm2);
-    hm2_watchdog_cleanup(hm2);
-    hm2_ioport_cleanup(hm2);
+    for (int i = hm2_num_modules - 1; i >= 0; i--)
+        if (hm2_modules[i]->cleanup)
+            hm2_modules[i]->cleanup(hm2);
     hm2_tram_free(hm2);
+}
+
+static int setup_modules(hostmot2_t *hm2)
+{
+    for (int i = 0; i < hm2_num_modules; i++) {
+        int r = hm2_modules[i]->setup ? hm2_modules[i]->setup(hm2) : 0;
+        if (r)
+            return r;
+    }
+    return 0;
 }
 
 static void force_write_all(hostmot2_t *hm2)
 {
-    hm2_ioport_force_write(hm2);
-    hm2_watchdog_force_write(hm2);
-    hm2_encoder_force_write(hm2);
-    hm2_stepgen_force_write(hm2);
-    hm2_pwmgen_force_write(hm2);
-    hm2_led_force_write(hm2);
+    for (int i = 0; i < hm2_num_modules; i++)
+        if (hm2_modules[i]->force_write)
+            hm2_modules[i]->force_write(hm2);
 }
 
 static void process_read(hostmot2_t *hm2, long period)
 {
-    hm2_watchdog_process_read(hm2);
-    hm2_ioport_process_read(hm2);
-    hm2_encoder_process_read(hm2, period);
-    hm2_stepgen_process_read(hm2, period);
-    hm2_raw_process_read(hm2);
+    for (int i = 0; i < hm2_num_modules; i++)
+        if (hm2_modules[i]->process_read)
+            hm2_modules[i]->process_read(hm2, period);
+}
+
+static void prepare_write(hostmot2_t *hm2, long period)
+{
+    for (int i = 0; i < hm2_num_modules; i++)
+        if (hm2_modules[i]->prepare_write)
+            hm2_modules[i]->prepare_write(hm2, period);
+}
+
+static void write_changed(hostmot2_t *hm2)
+{
+    for (int i = 0; i < hm2_num_modules; i++)
+        if (hm2_modules[i]->write_changed)
+            hm2_modules[i]->write_changed(hm2);
 }
 
 static void io_failed(hostmot2_t *hm2)
@@ -124,23 +113,13 @@ void hm2_write(void *arg, long period)
     bool bitten = hm2_watchdog_has_bit(hm2);
     if (hm2->needs_reset && !bitten && !recover(hm2))
         return;
-    hm2_ioport_enable_module_outputs(hm2);
-    hm2_watchdog_prepare_write(hm2, period);
-    hm2_ioport_prepare_write(hm2);
-    hm2_pwmgen_prepare_write(hm2);
-    hm2_stepgen_prepare_write(hm2, period);
+    prepare_write(hm2, period);
     if (hm2_tram_write(hm2)) {
         hm2_msg(hm2, HM2_ERR, "write failed, setting io_error (clear it to retry)");
         io_failed(hm2);
         return;
     }
-    hm2_ioport_write_changed(hm2);
-    hm2_watchdog_write_changed(hm2);
-    hm2_pwmgen_write_changed(hm2);
-    hm2_stepgen_write_changed(hm2);
-    hm2_encoder_write_changed(hm2);
-    hm2_led_write_changed(hm2);
-    hm2_raw_write(hm2);
+    write_changed(hm2);
     if (hm2->needs_reset && !hm2_watchdog_has_bit(hm2)) {
         hm2_msg(hm2, HM2_ERR, "configuration write failed, setting io_error (clear it to retry)");
         *hm2->io_error = 1;
@@ -216,9 +195,7 @@ static int setup_hal(hostmot2_t *hm2)
     if ((r = hal_param_bit_newf(HAL_RW, hm2->io_error, hm2->llio->comp_id, "%s.io_error",
                                 hm2->llio->name)))
         return hm2_hal_fail(hm2, r, "io_error");
-    if ((r = hm2_ioport_setup(hm2)) || (r = hm2_watchdog_setup(hm2)) ||
-        (r = hm2_encoder_setup(hm2)) || (r = hm2_stepgen_setup(hm2)) ||
-        (r = hm2_pwmgen_setup(hm2)) || (r = hm2_led_setup(hm2)) || (r = hm2_raw_setup(hm2)))
+    if ((r = setup_modules(hm2)))
         return r;
     return hm2_tram_allocate(hm2);
 }
@@ -229,10 +206,8 @@ static int first_transfer(hostmot2_t *hm2)
     force_write_all(hm2);
     if (hm2_tram_read(hm2))
         goto comm;
-    process_read(hm2, 0);
-    hm2_ioport_prepare_write(hm2);
-    hm2_pwmgen_prepare_write(hm2);
-    hm2_stepgen_prepare_write(hm2, 0);
+    process_read(hm2, HM2_LOAD_PERIOD);
+    prepare_write(hm2, HM2_LOAD_PERIOD);
     if (hm2_tram_write(hm2) || hm2->needs_reset)
         goto comm;
     return 0;

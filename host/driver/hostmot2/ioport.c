@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hm2_hal.h"
+#include "modules.h"
 
 struct hm2_gpio_hal {
     hal_bit_t *in, *in_not, *out;
@@ -98,7 +98,7 @@ static int alias_pin(hostmot2_t *hm2, int i)
     return 0;
 }
 
-int hm2_ioport_setup(hostmot2_t *hm2)
+static int ioport_setup(hostmot2_t *hm2)
 {
     if (!hm2->ioport.present || hm2->num_pins == 0)
         return 0;
@@ -173,25 +173,19 @@ static void write_config(hostmot2_t *hm2, bool force)
     }
 }
 
-void hm2_ioport_force_write(hostmot2_t *hm2)
+static void ioport_force_write(hostmot2_t *hm2)
 {
     if (hm2->ioport_s)
         write_config(hm2, true);
 }
 
-void hm2_ioport_write_changed(hostmot2_t *hm2)
+static void ioport_write_changed(hostmot2_t *hm2)
 {
     if (hm2->ioport_s)
         write_config(hm2, false);
 }
 
-void hm2_ioport_enable_module_outputs(hostmot2_t *hm2)
-{
-    if (hm2->ioport_s)
-        hm2->ioport_s->module_outputs = true;
-}
-
-void hm2_ioport_process_read(hostmot2_t *hm2)
+static void gpio_inputs(hostmot2_t *hm2)
 {
     struct hm2_ioport_state *s = hm2->ioport_s;
     if (!s)
@@ -204,7 +198,7 @@ void hm2_ioport_process_read(hostmot2_t *hm2)
     }
 }
 
-void hm2_ioport_prepare_write(hostmot2_t *hm2)
+static void gpio_outputs(hostmot2_t *hm2)
 {
     struct hm2_ioport_state *s = hm2->ioport_s;
     if (!s)
@@ -226,7 +220,7 @@ int hm2_ioport_read_gpio(hostmot2_t *hm2)
                             4u * (size_t)s->num_ports);
     if (r)
         return r;
-    hm2_ioport_process_read(hm2);
+    gpio_inputs(hm2);
     return 0;
 }
 
@@ -236,13 +230,38 @@ int hm2_ioport_write_gpio(hostmot2_t *hm2)
     if (!s)
         return 0;
     write_config(hm2, false);
-    hm2_ioport_prepare_write(hm2);
+    gpio_outputs(hm2);
     return hm2->llio->write(hm2->llio, hm2_reg_addr(&hm2->ioport.md, REG_DATA, 0), s->data_write,
                             4u * (size_t)s->num_ports);
 }
 
-void hm2_ioport_cleanup(hostmot2_t *hm2)
+static void ioport_process_read(hostmot2_t *hm2, long period)
+{
+    (void)period;
+    gpio_inputs(hm2);
+}
+
+static void ioport_prepare_write(hostmot2_t *hm2, long period)
+{
+    /* module outputs get their DDR bits from the first HAL write() on, not
+     * at load (LinuxCNC 2.9: no output drives before the threads run) */
+    if (hm2->ioport_s && period != HM2_LOAD_PERIOD)
+        hm2->ioport_s->module_outputs = true;
+    gpio_outputs(hm2);
+}
+
+static void ioport_cleanup(hostmot2_t *hm2)
 {
     free(hm2->ioport_s);
     hm2->ioport_s = NULL;
 }
+
+const struct hm2_module_ops hm2_ioport_ops = {
+    .name = "ioport",
+    .setup = ioport_setup,
+    .process_read = ioport_process_read,
+    .prepare_write = ioport_prepare_write,
+    .write_changed = ioport_write_changed,
+    .force_write = ioport_force_write,
+    .cleanup = ioport_cleanup,
+};

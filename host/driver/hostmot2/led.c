@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "hm2_hal.h"
+#include "module_api.h"
 
 struct hm2_led_state {
     int num;
@@ -14,7 +14,7 @@ struct hm2_led_state {
     bool done;
 };
 
-int hm2_led_setup(hostmot2_t *hm2)
+static int led_setup(hostmot2_t *hm2)
 {
     if (!hm2->led.present || hm2->led.used == 0 || hm2->num_leds <= 0)
         return 0;
@@ -55,18 +55,26 @@ static void led_write(hostmot2_t *hm2, bool force)
     s->done = true;
 }
 
-void hm2_led_write_changed(hostmot2_t *hm2)
+static void led_write_changed(hostmot2_t *hm2)
 {
     led_write(hm2, false);
 }
 
-void hm2_led_force_write(hostmot2_t *hm2)
+static void led_force_write(hostmot2_t *hm2)
 {
     led_write(hm2, true);
 }
 
-void hm2_led_cleanup(hostmot2_t *hm2)
+static void led_cleanup(hostmot2_t *hm2)
 {
     free(hm2->led_s);
     hm2->led_s = NULL;
 }
+
+const struct hm2_module_ops hm2_led_ops = {
+    .name = "led",
+    .setup = led_setup,
+    .write_changed = led_write_changed,
+    .force_write = led_force_write,
+    .cleanup = led_cleanup,
+};

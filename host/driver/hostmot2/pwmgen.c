@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "hm2_hal.h"
+#include "module_api.h"
 
 enum { REG_VALUE = 0, REG_MODE = 1, REG_PWMRATE = 2, REG_PDMRATE = 3, REG_ENABLE = 4 };
 
@@ -39,7 +39,7 @@ struct hm2_pwmgen_state {
     struct pwm_written *w;
 };
 
-int hm2_pwmgen_setup(hostmot2_t *hm2)
+static int pwmgen_setup(hostmot2_t *hm2)
 {
     if (!hm2->pwmgen.present || hm2->pwmgen.used == 0)
         return 0;
@@ -102,13 +102,16 @@ int hm2_pwmgen_setup(hostmot2_t *hm2)
     return hm2_tram_add_write(hm2, hm2_reg_addr(s->md, REG_VALUE, 0), &s->value, s->num);
 }
 
-void hm2_pwmgen_prepare_write(hostmot2_t *hm2)
+static void pwmgen_force_write(hostmot2_t *hm2);
+
+static void pwmgen_prepare_write(hostmot2_t *hm2, long period)
 {
+    (void)period;
     struct hm2_pwmgen_state *s = hm2->pwmgen_s;
     if (!s)
         return;
     if (!s->config_written)
-        hm2_pwmgen_force_write(hm2); /* pwm_bits is known only after a config write */
+        pwmgen_force_write(hm2); /* pwm_bits is known only after a config write */
     for (int i = 0; i < s->num; i++) {
         struct pwm_hal *h = &s->hal[i];
         if (h->scale == 0.0) {
@@ -142,7 +145,7 @@ static void write_reg(hostmot2_t *hm2, int reg, int inst, uint32_t v)
     hm2_write_cfg(hm2, hm2_reg_addr(hm2->pwmgen_s->md, reg, inst), v);
 }
 
-void hm2_pwmgen_force_write(hostmot2_t *hm2)
+static void pwmgen_force_write(hostmot2_t *hm2)
 {
     struct hm2_pwmgen_state *s = hm2->pwmgen_s;
     if (!s)
@@ -199,17 +202,26 @@ void hm2_pwmgen_force_write(hostmot2_t *hm2)
     s->config_written = true;
 }
 
-void hm2_pwmgen_write_changed(hostmot2_t *hm2)
+static void pwmgen_write_changed(hostmot2_t *hm2)
 {
     struct hm2_pwmgen_state *s = hm2->pwmgen_s;
     if (s && config_changed(s))
-        hm2_pwmgen_force_write(hm2);
+        pwmgen_force_write(hm2);
 }
 
-void hm2_pwmgen_cleanup(hostmot2_t *hm2)
+static void pwmgen_cleanup(hostmot2_t *hm2)
 {
     if (hm2->pwmgen_s)
         free(hm2->pwmgen_s->w);
     free(hm2->pwmgen_s);
     hm2->pwmgen_s = NULL;
 }
+
+const struct hm2_module_ops hm2_pwmgen_ops = {
+    .name = "pwmgen",
+    .setup = pwmgen_setup,
+    .prepare_write = pwmgen_prepare_write,
+    .write_changed = pwmgen_write_changed,
+    .force_write = pwmgen_force_write,
+    .cleanup = pwmgen_cleanup,
+};

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "hm2_hal.h"
+#include "module_api.h"
 
 struct raw_hal {
     hal_u32_t *read_address, *read_data, *write_address, *write_data;
@@ -17,7 +17,7 @@ struct hm2_raw_state {
     struct raw_hal *hal;
 };
 
-int hm2_raw_setup(hostmot2_t *hm2)
+static int raw_setup(hostmot2_t *hm2)
 {
     if (!hm2->config.enable_raw)
         return 0;
@@ -45,8 +45,9 @@ int hm2_raw_setup(hostmot2_t *hm2)
     return 0;
 }
 
-void hm2_raw_process_read(hostmot2_t *hm2)
+static void raw_process_read(hostmot2_t *hm2, long period)
 {
+    (void)period;
     struct hm2_raw_state *s = hm2->raw_s;
     if (!s)
         return;
@@ -62,7 +63,7 @@ void hm2_raw_process_read(hostmot2_t *hm2)
     }
 }
 
-void hm2_raw_write(hostmot2_t *hm2)
+static void raw_write_changed(hostmot2_t *hm2)
 {
     struct hm2_raw_state *s = hm2->raw_s;
     if (!s || !*s->hal->write_strobe)
@@ -70,8 +71,16 @@ void hm2_raw_write(hostmot2_t *hm2)
     hm2_write_cfg(hm2, *s->hal->write_address & 0xFFFCu, *s->hal->write_data);
 }
 
-void hm2_raw_cleanup(hostmot2_t *hm2)
+static void raw_cleanup(hostmot2_t *hm2)
 {
     free(hm2->raw_s);
     hm2->raw_s = NULL;
 }
+
+const struct hm2_module_ops hm2_raw_ops = {
+    .name = "raw",
+    .setup = raw_setup,
+    .process_read = raw_process_read,
+    .write_changed = raw_write_changed,
+    .cleanup = raw_cleanup,
+};

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "hm2_hal.h"
+#include "module_api.h"
 
 enum {
     REG_RATE = 0,
@@ -112,7 +112,7 @@ static int export_instance(hostmot2_t *hm2, int i, struct sg_hal *h, bool swap)
     return 0;
 }
 
-int hm2_stepgen_setup(hostmot2_t *hm2)
+static int stepgen_setup(hostmot2_t *hm2)
 {
     if (!hm2->stepgen.present || hm2->stepgen.used == 0)
         return 0;
@@ -144,7 +144,7 @@ int hm2_stepgen_setup(hostmot2_t *hm2)
     return 0;
 }
 
-void hm2_stepgen_process_read(hostmot2_t *hm2, long period)
+static void stepgen_process_read(hostmot2_t *hm2, long period)
 {
     struct hm2_stepgen_state *s = hm2->stepgen_s;
     (void)period;
@@ -204,7 +204,7 @@ static double effective_maxvel(hostmot2_t *hm2, int i, struct sg_hal *h)
     return h->maxvel;
 }
 
-void hm2_stepgen_prepare_write(hostmot2_t *hm2, long period)
+static void stepgen_prepare_write(hostmot2_t *hm2, long period)
 {
     struct hm2_stepgen_state *s = hm2->stepgen_s;
     if (!s)
@@ -323,7 +323,7 @@ static void write_mode(hostmot2_t *hm2, int i, bool force)
     g->mode_written = true;
 }
 
-void hm2_stepgen_write_changed(hostmot2_t *hm2)
+static void stepgen_write_changed(hostmot2_t *hm2)
 {
     struct hm2_stepgen_state *s = hm2->stepgen_s;
     if (!s)
@@ -334,7 +334,7 @@ void hm2_stepgen_write_changed(hostmot2_t *hm2)
     }
 }
 
-void hm2_stepgen_force_write(hostmot2_t *hm2)
+static void stepgen_force_write(hostmot2_t *hm2)
 {
     struct hm2_stepgen_state *s = hm2->stepgen_s;
     if (!s)
@@ -347,10 +347,20 @@ void hm2_stepgen_force_write(hostmot2_t *hm2)
     write_reg(hm2, REG_MASTERDDS, 0, 0xFFFFFFFFu);
 }
 
-void hm2_stepgen_cleanup(hostmot2_t *hm2)
+static void stepgen_cleanup(hostmot2_t *hm2)
 {
     if (hm2->stepgen_s)
         free(hm2->stepgen_s->inst);
     free(hm2->stepgen_s);
     hm2->stepgen_s = NULL;
 }
+
+const struct hm2_module_ops hm2_stepgen_ops = {
+    .name = "stepgen",
+    .setup = stepgen_setup,
+    .process_read = stepgen_process_read,
+    .prepare_write = stepgen_prepare_write,
+    .write_changed = stepgen_write_changed,
+    .force_write = stepgen_force_write,
+    .cleanup = stepgen_cleanup,
+};

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "hm2_hal.h"
+#include "modules.h"
 
 #define WD_DEFAULT_TIMEOUT_NS 1000000000u /* seed value (2.9: 5 ms) */
 #define WD_PET_COOKIE 0x5A000000u
@@ -34,7 +34,7 @@ struct hm2_watchdog_state {
 #define REG_STATUS 1
 #define REG_COOKIE 2
 
-int hm2_watchdog_setup(hostmot2_t *hm2)
+static int watchdog_setup(hostmot2_t *hm2)
 {
     if (!hm2->watchdog.present || hm2->watchdog.used == 0)
         return 0;
@@ -87,7 +87,7 @@ static void write_timer(hostmot2_t *hm2)
     s->written_timeout_ns = s->hal->timeout_ns;
 }
 
-void hm2_watchdog_force_write(hostmot2_t *hm2)
+static void watchdog_force_write(hostmot2_t *hm2)
 {
     if (!hm2->watchdog_s)
         return;
@@ -104,7 +104,7 @@ void hm2_watchdog_clear_bite(hostmot2_t *hm2)
     s->bite_seen = false;
 }
 
-void hm2_watchdog_write_changed(hostmot2_t *hm2)
+static void watchdog_write_changed(hostmot2_t *hm2)
 {
     struct hm2_watchdog_state *s = hm2->watchdog_s;
     if (!s || !s->enable)
@@ -113,8 +113,9 @@ void hm2_watchdog_write_changed(hostmot2_t *hm2)
         write_timer(hm2);
 }
 
-void hm2_watchdog_process_read(hostmot2_t *hm2)
+static void watchdog_process_read(hostmot2_t *hm2, long period)
 {
+    (void)period;
     struct hm2_watchdog_state *s = hm2->watchdog_s;
     if (!s)
         return;
@@ -126,10 +127,12 @@ void hm2_watchdog_process_read(hostmot2_t *hm2)
     }
 }
 
-void hm2_watchdog_prepare_write(hostmot2_t *hm2, long period)
+static void watchdog_prepare_write(hostmot2_t *hm2, long period)
 {
     struct hm2_watchdog_state *s = hm2->watchdog_s;
-    if (!s)
+    /* the load-time transfer leaves the watchdog disabled: it is enabled
+     * by the first HAL write() or pet_watchdog */
+    if (!s || period == HM2_LOAD_PERIOD)
         return;
     *s->pet = WD_PET_COOKIE;
     s->enable = true;
@@ -151,7 +154,7 @@ int hm2_watchdog_pet(hostmot2_t *hm2)
     if (!s)
         return 0;
     s->enable = true;
-    hm2_watchdog_write_changed(hm2);
+    watchdog_write_changed(hm2);
     return hm2_write_reg(hm2, hm2_reg_addr(&hm2->watchdog.md, REG_COOKIE, 0), WD_PET_COOKIE);
 }
 
@@ -169,8 +172,18 @@ void hm2_watchdog_force_bite(hostmot2_t *hm2)
     hm2_write_reg(hm2, hm2_reg_addr(&hm2->watchdog.md, REG_TIMER, 0), 0);
 }
 
-void hm2_watchdog_cleanup(hostmot2_t *hm2)
+static void watchdog_cleanup(hostmot2_t *hm2)
 {
     free(hm2->watchdog_s);
     hm2->watchdog_s = NULL;
 }
+
+const struct hm2_module_ops hm2_watchdog_ops = {
+    .name = "watchdog",
+    .setup = watchdog_setup,
+    .process_read = watchdog_process_read,
+    .prepare_write = watchdog_prepare_write,
+    .write_changed = watchdog_write_changed,
+    .force_write = watchdog_force_write,
+    .cleanup = watchdog_cleanup,
+};

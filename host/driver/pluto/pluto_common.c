@@ -134,3 +134,60 @@ int pluto_read_firmware(const char *name, uint8_t **buf, size_t *len, char *path
     }
     return 0;
 }
+
+static void transfer_failed(epp_port_t *p, volatile uint32_t *comm_error,
+                            const struct pluto_log *log, const char *board, const char *what,
+                            int r)
+{
+    (*comm_error)++;
+    if (log && log->fn)
+        log->fn(log->ctx, PLUTO_ERR, "%s: %s on %s failed: error %d\n", board, what, p->name, r);
+}
+
+void pluto_write_transfer(epp_port_t *p, const uint8_t *w, const uint8_t *sizes, int n,
+                          volatile uint32_t *comm_error, const struct pluto_log *log,
+                          const char *board)
+{
+    int r = epp_addr_write(p, 0);
+    for (int k = 0; k < n && !r; k++) {
+        r = epp_data_write(p, w, sizes[k]);
+        w += sizes[k];
+    }
+    if (!r)
+        r = epp_flush(p);
+    if (r)
+        transfer_failed(p, comm_error, log, board, "write", r);
+}
+
+int pluto_read_transfer(epp_port_t *p, uint8_t rbuf[20], uint8_t *status,
+                        volatile uint32_t *comm_error, const struct pluto_log *log,
+                        const char *board)
+{
+    int batching = p->backend->batching;
+    int was_error = *comm_error != 0;
+    int r = epp_addr_write(p, 0);
+    if (!r)
+        r = epp_data_read(p, rbuf, 4);
+    if (!r)
+        r = epp_status_read(p, status);
+    if (!r && batching && !was_error)
+        r = epp_data_read(p, rbuf + 4, 16);
+    if (!r)
+        r = epp_flush(p);
+    if (r) {
+        transfer_failed(p, comm_error, log, board, "read", r);
+        return 0;
+    }
+    if (*status & EPP_STATUS_TIMEOUT) {
+        (*comm_error)++;
+        epp_clear_timeout_pluto(p);
+        epp_flush(p);
+    }
+    if (*comm_error)
+        return 0;
+    if (!batching && ((r = epp_data_read(p, rbuf + 4, 16)) || (r = epp_flush(p)))) {
+        (*comm_error)++;
+        return 0;
+    }
+    return 1;
+}

@@ -49,6 +49,25 @@ struct pluto_log {
 #define PLUTO_ERR 1
 #define PLUTO_INFO 3
 
+/* The servo-period transfers both drivers share (spec §4.1, §6.1).  A
+ * failure of the port itself (socket gone, ...) counts as a communication
+ * error like an EPP timeout and is logged with `board` ("pluto-servo").
+ * *comm_error is the driver's communication-error parameter.
+ *
+ * Write: address 0, then the data writes of w (sizes[k] bytes each, in
+ * order), one flush. */
+void pluto_write_transfer(epp_port_t *p, const uint8_t *w, const uint8_t *sizes, int n,
+                          volatile uint32_t *comm_error, const struct pluto_log *log,
+                          const char *board);
+/* Read: address 0, 4 bytes, the status register (timeout bit: error, the
+ * timeout cleared), 16 more bytes into rbuf[20].  On a batching port the
+ * 16 bytes are queued before the status is known (one flush).  Returns 1
+ * when rbuf holds this period's data, 0 when there is a communication
+ * error (now or from before: the outputs keep their values). */
+int pluto_read_transfer(epp_port_t *p, uint8_t rbuf[20], uint8_t *status,
+                        volatile uint32_t *comm_error, const struct pluto_log *log,
+                        const char *board);
+
 /* Send a firmware image over the port exactly as spec §8 (steps 1-6) says:
  * control 0x04, ECR 0x00, nCONFIG pulse (control 0x00 x4, 0x04 x20), then
  * for every bit LSB first: data <- 0xFF/0x00, control <- 0x04, 0x05, 0x04;

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "pluto_module.h"
+#include "hal.h"
 #include "rtapi.h"
 
 void pluto_rtapi_log(void *ctx, int level, const char *fmt, ...)
@@ -63,4 +64,52 @@ int pluto_module_setup(epp_port_t *port, const char *modname, const char *board,
         return r;
     }
     return 0;
+}
+
+int pluto_module_load(const struct pluto_module_desc *d, const struct pluto_module_args *a,
+                      void **block, int *comp_id)
+{
+    int r;
+    *block = NULL;
+    *comp_id = hal_init(d->modname);
+    if (*comp_id < 0)
+        return *comp_id;
+    void *b = hal_malloc((long)d->block_size);
+    if (!b) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: out of HAL memory (%zu bytes)\n", d->modname,
+                        d->block_size);
+        r = -ENOMEM;
+        goto fail;
+    }
+    memset(b, 0, d->block_size);
+    epp_port_t *port = d->port_of(b);
+    r = pluto_module_setup(port, d->modname, d->board, a->port, a->ioaddr, a->ioaddr_hi,
+                           a->epp_wide,
+                           a->firmware && *a->firmware ? a->firmware : d->default_firmware);
+    if (r)
+        goto fail;
+    r = d->init(b, *comp_id);
+    if (r) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: exporting the HAL objects failed: %d\n", d->modname,
+                        r);
+        epp_port_close(port);
+        goto fail;
+    }
+    *block = b;
+    hal_ready(*comp_id);
+    return 0;
+fail:
+    hal_exit(*comp_id);
+    *comp_id = -1;
+    return r;
+}
+
+void pluto_module_unload(const struct pluto_module_desc *d, void **block, int *comp_id)
+{
+    if (*block)
+        epp_port_close(d->port_of(*block));
+    *block = NULL;
+    if (*comp_id >= 0)
+        hal_exit(*comp_id);
+    *comp_id = -1;
 }

@@ -123,52 +123,48 @@ static int export_all(struct pluto_servo *s)
     return r;
 }
 
-int rtapi_app_main(void)
+static epp_port_t *port_of(void *block)
 {
-    int r;
-    comp_id = hal_init("pluto_servo");
-    if (comp_id < 0)
-        return comp_id;
-    blk = hal_malloc(sizeof(*blk));
-    if (!blk) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "pluto_servo: out of HAL memory (%zu bytes)\n",
-                        sizeof(*blk));
-        r = -ENOMEM;
-        goto fail;
-    }
-    memset(blk, 0, sizeof(*blk));
-    r = pluto_module_setup(&blk->port, "pluto_servo", "pluto-servo", port, ioaddr, ioaddr_hi,
-                           epp_wide, firmware && *firmware ? firmware : "pluto_servo.rbf");
-    if (r)
-        goto fail;
-    struct pluto_servo *s = &blk->s;
-    s->port = &blk->port;
+    return &((struct servo_block *)block)->port;
+}
+
+static int init(void *block, int id)
+{
+    struct servo_block *b = block;
+    struct pluto_servo *s = &b->s;
+    blk = b; /* the functions' argument */
+    comp_id = id;
+    s->port = &b->port;
     s->watchdog = watchdog ? 1 : 0;
     s->test_encoder = test_encoder ? 1 : 0;
     s->log.fn = pluto_rtapi_log;
-    r = export_all(s);
-    if (r) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "pluto_servo: exporting the HAL objects failed: %d\n", r);
-        epp_port_close(&blk->port);
-        goto fail;
-    }
-    pluto_servo_defaults(s);
-    hal_ready(comp_id);
-    return 0;
-fail:
-    blk = NULL;
-    hal_exit(comp_id);
-    comp_id = -1;
+    int r = export_all(s);
+    if (!r)
+        pluto_servo_defaults(s);
+    return r;
+}
+
+static const struct pluto_module_desc desc = {
+    .modname = "pluto_servo",
+    .board = "pluto-servo",
+    .default_firmware = "pluto_servo.rbf",
+    .block_size = sizeof(struct servo_block),
+    .port_of = port_of,
+    .init = init,
+};
+
+int rtapi_app_main(void)
+{
+    struct pluto_module_args a = {port, ioaddr, ioaddr_hi, epp_wide, firmware};
+    void *b;
+    int r = pluto_module_load(&desc, &a, &b, &comp_id);
+    blk = r ? NULL : b;
     return r;
 }
 
 void rtapi_app_exit(void)
 {
-    if (blk) {
-        epp_port_close(&blk->port);
-        blk = NULL;
-    }
-    if (comp_id >= 0)
-        hal_exit(comp_id);
-    comp_id = -1;
+    void *b = blk;
+    pluto_module_unload(&desc, &b, &comp_id);
+    blk = NULL;
 }

@@ -106,23 +106,8 @@ void pluto_servo_write(struct pluto_servo *s, long period)
     for (int ch = 0; ch < 4; ch++)
         pluto_put16(w + 2 * ch, pluto_servo_pwm_word(s, ch));
     pluto_put16(w + 8, pluto_servo_control_word(s));
-    epp_port_t *p = s->port;
-    int r = epp_addr_write(p, 0);
-    if (!r)
-        r = epp_data_write(p, w, 4);
-    if (!r)
-        r = epp_data_write(p, w + 4, 4);
-    if (!r)
-        r = epp_data_write(p, w + 8, 2);
-    if (!r)
-        r = epp_flush(p);
-    if (r) {
-        /* the port itself failed (socket gone, ...): treat as a timeout */
-        s->communication_error++;
-        if (s->log.fn)
-            s->log.fn(s->log.ctx, PLUTO_ERR, "pluto-servo: write on %s failed: error %d\n",
-                      p->name, r);
-    }
+    static const uint8_t sizes[3] = {4, 4, 2};
+    pluto_write_transfer(s->port, w, sizes, 3, &s->communication_error, &s->log, "pluto-servo");
 }
 
 static void decode_encoder(struct pluto_servo *s, int i, uint32_t word, double fperiod)
@@ -153,37 +138,10 @@ static void decode_encoder(struct pluto_servo *s, int i, uint32_t word, double f
 
 void pluto_servo_read(struct pluto_servo *s, long period)
 {
-    epp_port_t *p = s->port;
     double fperiod = period * 1e-9;
-    int batching = p->backend->batching;
-    int was_error = s->communication_error != 0;
-    int r = epp_addr_write(p, 0);
-    if (!r)
-        r = epp_data_read(p, s->rbuf, 4);
-    if (!r)
-        r = epp_status_read(p, &s->status);
-    if (!r && batching && !was_error)
-        r = epp_data_read(p, s->rbuf + 4, 16);
-    if (!r)
-        r = epp_flush(p);
-    if (r) {
-        s->communication_error++;
-        if (s->log.fn)
-            s->log.fn(s->log.ctx, PLUTO_ERR, "pluto-servo: read on %s failed: error %d\n",
-                      p->name, r);
+    if (!pluto_read_transfer(s->port, s->rbuf, &s->status, &s->communication_error, &s->log,
+                             "pluto-servo"))
         return;
-    }
-    if (s->status & EPP_STATUS_TIMEOUT) {
-        s->communication_error++;
-        epp_clear_timeout_pluto(p);
-        epp_flush(p);
-    }
-    if (s->communication_error)
-        return;
-    if (!batching && ((r = epp_data_read(p, s->rbuf + 4, 16)) || (r = epp_flush(p)))) {
-        s->communication_error++;
-        return;
-    }
     for (int i = 0; i < 4; i++)
         decode_encoder(s, i, pluto_le32(s->rbuf + 4 * i), fperiod);
     uint32_t in = pluto_le32(s->rbuf + 16);

@@ -118,57 +118,53 @@ static int export_all(struct pluto_step *s)
     return r;
 }
 
+static epp_port_t *port_of(void *block)
+{
+    return &((struct step_block *)block)->port;
+}
+
+static int init(void *block, int id)
+{
+    struct step_block *b = block;
+    struct pluto_step *s = &b->s;
+    blk = b; /* the functions' argument */
+    comp_id = id;
+    s->port = &b->port;
+    s->speedrange = speedrange;
+    s->watchdog = watchdog ? 1 : 0;
+    s->log.fn = pluto_rtapi_log;
+    int r = export_all(s);
+    if (!r)
+        pluto_step_defaults(s);
+    return r;
+}
+
+static const struct pluto_module_desc desc = {
+    .modname = "pluto_step",
+    .board = "pluto-step",
+    .default_firmware = "pluto_step.rbf",
+    .block_size = sizeof(struct step_block),
+    .port_of = port_of,
+    .init = init,
+};
+
 int rtapi_app_main(void)
 {
-    int r;
     if (speedrange < 0 || speedrange > 3) {
         rtapi_print_msg(RTAPI_MSG_ERR, "pluto_step: speedrange=%d is out of range (0..3)\n",
                         speedrange);
         return -EINVAL;
     }
-    comp_id = hal_init("pluto_step");
-    if (comp_id < 0)
-        return comp_id;
-    blk = hal_malloc(sizeof(*blk));
-    if (!blk) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "pluto_step: out of HAL memory (%zu bytes)\n",
-                        sizeof(*blk));
-        r = -ENOMEM;
-        goto fail;
-    }
-    memset(blk, 0, sizeof(*blk));
-    r = pluto_module_setup(&blk->port, "pluto_step", "pluto-step", port, ioaddr, ioaddr_hi,
-                           epp_wide, firmware && *firmware ? firmware : "pluto_step.rbf");
-    if (r)
-        goto fail;
-    struct pluto_step *s = &blk->s;
-    s->port = &blk->port;
-    s->speedrange = speedrange;
-    s->watchdog = watchdog ? 1 : 0;
-    s->log.fn = pluto_rtapi_log;
-    r = export_all(s);
-    if (r) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "pluto_step: exporting the HAL objects failed: %d\n", r);
-        epp_port_close(&blk->port);
-        goto fail;
-    }
-    pluto_step_defaults(s);
-    hal_ready(comp_id);
-    return 0;
-fail:
-    blk = NULL;
-    hal_exit(comp_id);
-    comp_id = -1;
+    struct pluto_module_args a = {port, ioaddr, ioaddr_hi, epp_wide, firmware};
+    void *b;
+    int r = pluto_module_load(&desc, &a, &b, &comp_id);
+    blk = r ? NULL : b;
     return r;
 }
 
 void rtapi_app_exit(void)
 {
-    if (blk) {
-        epp_port_close(&blk->port);
-        blk = NULL;
-    }
-    if (comp_id >= 0)
-        hal_exit(comp_id);
-    comp_id = -1;
+    void *b = blk;
+    pluto_module_unload(&desc, &b, &comp_id);
+    blk = NULL;
 }

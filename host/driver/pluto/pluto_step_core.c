@@ -143,53 +143,16 @@ void pluto_step_write(struct pluto_step *s, long period)
     }
     pluto_put16(w + 8, pluto_step_dout_word(s));
     pluto_put16(w + 10, pluto_step_timing_word(s));
-    epp_port_t *p = s->port;
-    int r = epp_addr_write(p, 0);
-    for (int k = 0; k < 6 && !r; k++)
-        r = epp_data_write(p, w + 2 * k, 2);
-    if (!r)
-        r = epp_flush(p);
-    if (r) {
-        s->communication_error++;
-        if (s->log.fn)
-            s->log.fn(s->log.ctx, PLUTO_ERR, "pluto-step: write on %s failed: error %d\n",
-                      p->name, r);
-    }
+    static const uint8_t sizes[6] = {2, 2, 2, 2, 2, 2};
+    pluto_write_transfer(s->port, w, sizes, 6, &s->communication_error, &s->log, "pluto-step");
 }
 
 void pluto_step_read(struct pluto_step *s, long period)
 {
-    epp_port_t *p = s->port;
     double fperiod = period * 1e-9;
-    int batching = p->backend->batching;
-    int was_error = s->communication_error != 0;
-    int r = epp_addr_write(p, 0);
-    if (!r)
-        r = epp_data_read(p, s->rbuf, 4);
-    if (!r)
-        r = epp_status_read(p, &s->status);
-    if (!r && batching && !was_error)
-        r = epp_data_read(p, s->rbuf + 4, 16);
-    if (!r)
-        r = epp_flush(p);
-    if (r) {
-        s->communication_error++;
-        if (s->log.fn)
-            s->log.fn(s->log.ctx, PLUTO_ERR, "pluto-step: read on %s failed: error %d\n",
-                      p->name, r);
+    if (!pluto_read_transfer(s->port, s->rbuf, &s->status, &s->communication_error, &s->log,
+                             "pluto-step"))
         return;
-    }
-    if (s->status & EPP_STATUS_TIMEOUT) {
-        s->communication_error++;
-        epp_clear_timeout_pluto(p);
-        epp_flush(p);
-    }
-    if (s->communication_error)
-        return;
-    if (!batching && ((r = epp_data_read(p, s->rbuf + 4, 16)) || (r = epp_flush(p)))) {
-        s->communication_error++;
-        return;
-    }
     for (int i = 0; i < 4; i++) {
         uint32_t word = pluto_le32(s->rbuf + 4 * i);
         int64_t count = pluto_extend(s->last_count[i], word & 0x1FFFFFu, 21);

@@ -281,19 +281,14 @@ class Hm2EppBoard final : public EppPortBoard {
     void finish_config()
     {
         cfg_done_ = true;
-        FwImage img;
         std::string err;
-        int rc = parse_fw_image(cfg_.data(), cfg_.size(), img, err);
-        const Hm2EppFw *f = rc == 0 ? find(img.firmware) : nullptr;
-        if (rc == 0 && img.board != "7i43")
-            err = "image is for board " + img.board + ", this board is a 7i43";
-        else if (rc == 0 && !f)
-            err = "image names firmware " + img.firmware + ", not built into this vboard";
-        else if (rc == 0 && img.idrom_crc != f->info->idrom_crc)
-            err = "image of " + img.firmware + " comes from another build (IDROM CRC)";
-        else if (rc == 0) {
-            std::fprintf(stderr, "vboard: 7i43: configured with %s\n", f->info->firmware);
-            start(*f);
+        std::vector<BuiltFw> built;
+        for (const Hm2EppFw &f : kFws)
+            built.push_back({f.info->firmware, f.info->idrom_crc});
+        int i = match_fw_image(cfg_.data(), cfg_.size(), "7i43", built, "IDROM CRC", err);
+        if (i >= 0) {
+            std::fprintf(stderr, "vboard: 7i43: configured with %s\n", kFws[i].info->firmware);
+            start(kFws[i]);
             return;
         }
         std::fprintf(stderr, "vboard: 7i43: configuration failed, board stays blank: %s\n",

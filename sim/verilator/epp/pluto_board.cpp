@@ -277,25 +277,19 @@ class PlutoBoard final : public EppPortBoard {
     void finish_upload()
     {
         loading_ = false;
-        FwImage img;
         std::string err;
-        int rc = parse_fw_image(bits_.data(), bits_.size(), img, err);
-        const PlutoFw *f = rc == 0 ? find(img.firmware) : nullptr;
-        if (rc == 0 && img.board != "pluto")
-            err = "image is for board " + img.board + ", this board is a Pluto-P";
-        else if (rc == 0 && !f)
-            err = "image names firmware " + img.firmware + ", not built into this vboard";
-        else if (rc == 0 && img.idrom_crc != design_id(f->name))
-            err = "image of " + img.firmware + " comes from another build (design id)";
-        else if (rc == 0) {
-            std::fprintf(stderr, "vboard: pluto: configured with %s\n", f->name);
-            start(*f);
+        std::vector<BuiltFw> built;
+        for (const PlutoFw &f : kPlutoFws)
+            built.push_back({f.name, design_id(f.name)});
+        int i = match_fw_image(bits_.data(), bits_.size(), "pluto", built, "design id", err);
+        if (i >= 0) {
+            std::fprintf(stderr, "vboard: pluto: configured with %s\n", kPlutoFws[i].name);
+            start(kPlutoFws[i]);
             return;
         }
-        std::fprintf(stderr, "vboard: pluto: configuration failed, board stays unconfigured: %s\n",
+        std::fprintf(stderr, "vboard: pluto: configuration failed, board stays blank: %s\n",
                      err.c_str());
     }
-
     PinBank pins_;
     const PlutoFw *fw_ = nullptr;
     std::unique_ptr<PlutoModel> model_;

@@ -86,4 +86,36 @@ int parse_fw_image(const uint8_t *p, size_t n, FwImage &img, std::string &err)
     return 0;
 }
 
+int match_fw_image(const uint8_t *p, size_t n, const std::string &board,
+                   const std::vector<BuiltFw> &built, const char *id_label, std::string &err)
+{
+    FwImage img;
+    int rc = parse_fw_image(p, n, img, err);
+    if (rc)
+        return rc;
+    if (img.board != board) {
+        err = "firmware image is for board " + img.board + ", this board is a " + board;
+        return -EINVAL;
+    }
+    std::string names;
+    for (size_t i = 0; i < built.size(); i++) {
+        names += (i ? ", " : "") + built[i].name;
+        if (built[i].name != img.firmware)
+            continue;
+        if (built[i].build_id != img.idrom_crc) {
+            char buf[240];
+            std::snprintf(buf, sizeof buf,
+                          "firmware image %s does not match the Verilated firmware (%s 0x%08x, "
+                          "built 0x%08x): image and vboard come from different builds",
+                          img.firmware.c_str(), id_label, img.idrom_crc, built[i].build_id);
+            err = buf;
+            return -EINVAL;
+        }
+        return static_cast<int>(i);
+    }
+    err = "firmware image " + img.firmware + " is not built into this vboard for board " + board +
+          " (built: " + names + ")";
+    return -EINVAL;
+}
+
 } // namespace vb

@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace vb {
 
@@ -39,6 +40,21 @@ uint32_t crc32(const uint8_t *p, size_t n);
 // Parse and check an image (length, magic, version, CRC).  0, or -EINVAL
 // with the reason.  Board and firmware matching is the board's job.
 int parse_fw_image(const uint8_t *p, size_t n, FwImage &img, std::string &err);
+
+// A firmware a board of this vboard can run, as an uploaded image must name
+// it: its name and the build id the image must carry (the IDROM CRC of an
+// hm2 firmware, the design id of a Pluto firmware).
+struct BuiltFw {
+    std::string name;
+    uint32_t build_id;
+};
+
+// Which of `built` the image for `board` selects: its index, or -EINVAL
+// with the reason (not an image, another board, a firmware this vboard
+// does not have, another build; `id_label` names the build id in the
+// message).  Every board's configuration path checks images with this.
+int match_fw_image(const uint8_t *p, size_t n, const std::string &board,
+                   const std::vector<BuiltFw> &built, const char *id_label, std::string &err);
 
 } // namespace vb
 

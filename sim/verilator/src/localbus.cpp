@@ -127,27 +127,15 @@ int LocalBusBoard::config(uint32_t op, const uint8_t *bits, size_t len, vb_confi
         // not applied (the protocol's error rule), so a configured board
         // keeps its firmware and a blank one stays blank.  (The drivers
         // reset the board before programming, as on real hardware.)
-        FwImage img;
-        int rc = parse_fw_image(bits, len, img, err);
-        if (rc == 0 && img.board != board_) {
-            err = "firmware image is for board " + img.board + ", this board is a " + board_;
-            rc = -EINVAL;
-        }
-        const LbEntry *e = rc == 0 ? find(img.firmware) : nullptr;
-        if (rc == 0 && !e) {
-            err = "firmware image " + img.firmware + " is not built into this vboard for board " +
-                  board_ + " (built: " + join(firmwares()) + ")";
-            rc = -EINVAL;
-        }
-        if (rc == 0 && e->info->idrom_crc != img.idrom_crc) {
-            char buf[200];
-            std::snprintf(buf, sizeof buf,
-                          "firmware image %s does not match the Verilated firmware (IDROM CRC "
-                          "0x%08x, built 0x%08x): image and vboard come from different builds",
-                          img.firmware.c_str(), img.idrom_crc, e->info->idrom_crc);
-            err = buf;
-            rc = -EINVAL;
-        }
+        std::vector<BuiltFw> built;
+        std::vector<const LbEntry *> entries;
+        for (size_t i = 0; i < kNumLbModels; i++)
+            if (board_ == kLbModels[i].info->board) {
+                built.push_back({kLbModels[i].info->firmware, kLbModels[i].info->idrom_crc});
+                entries.push_back(&kLbModels[i]);
+            }
+        int rc = match_fw_image(bits, len, board_, built, "IDROM CRC", err);
+        const LbEntry *e = rc >= 0 ? entries[static_cast<size_t>(rc)] : nullptr;
         if (rc < 0) {
             fill_status(st, firmware());
             err = board_ + ": configuration failed, board " +

@@ -80,7 +80,7 @@ def halrun(
     f = tmp / f"t{uuid.uuid4().hex[:6]}.hal"
     f.write_text(script)
     env = dict(os.environ)
-    env["HAL_INSTANCE"] = "hC-" + uuid.uuid4().hex[:10]
+    env["HAL_INSTANCE"] = "hm2-e2e-" + uuid.uuid4().hex[:10]
     env["HM_BUILD"] = str(BUILD)
     env.pop("HM2_FIRMWARE_PATH", None)  # firmware from $HM_BUILD/lib/firmware
     env.update(extra_env or {})

@@ -24,7 +24,7 @@ def halrun(tmp_path: Path, script: str) -> subprocess.CompletedProcess[str]:
     f = tmp_path / "test.hal"
     f.write_text(script)
     env = dict(os.environ)
-    env["HAL_INSTANCE"] = "h8-" + uuid.uuid4().hex[:10]
+    env["HAL_INSTANCE"] = "pluto-load-" + uuid.uuid4().hex[:10]
     env["HM_BUILD"] = str(BUILD)
     env["HM2_FIRMWARE_PATH"] = str(tmp_path)
     return subprocess.run(

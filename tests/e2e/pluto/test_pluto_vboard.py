@@ -109,7 +109,7 @@ def test_bad_image_leaves_the_board_unconfigured(tmp_path: Path, what: str, make
             assert h.state == 0 and h.firmware == "", what
             assert all(p.oe == 0 for p in c.probe(0, 43))
         if what != "truncated":
-            assert "configuration failed, board stays unconfigured" in b.stderr_so_far()
+            assert "configuration failed, board stays blank" in b.stderr_so_far()
 
 
 def test_reupload_replaces_running_firmware(tmp_path: Path) -> None:

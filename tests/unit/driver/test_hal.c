@@ -15,7 +15,7 @@
 #include "../../../host/driver/hostmot2/hm2_hal.h"
 #include "fake_hal.h"
 #include "hm2/boards.h"
-#include "hm2/test_patterns.h"
+#include "test_patterns.h"
 #include "testlib.h"
 
 static struct hm2_image_llio im;

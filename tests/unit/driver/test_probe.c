@@ -11,7 +11,7 @@
 
 #include "../check.h"
 #include "hm2/boards.h"
-#include "hm2/test_patterns.h"
+#include "test_patterns.h"
 #include "testlib.h"
 
 static struct hm2_image_llio im;

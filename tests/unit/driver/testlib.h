@@ -2,7 +2,7 @@
 /*
  * testlib.h - shared helpers of the driver unit tests: a log sink that
  * records every message line, and an IDROM image builder that works from
- * the stock pin-map CSVs (data/, copied from the spec's pinmaps) and the
+ * the stock pin-map CSVs (tests/data/pinmaps, the spec's pin maps) and the
  * IDROM layout of spec §3-§5, independently of the driver's own parser.
  */
 #ifndef HM2_TESTLIB_H

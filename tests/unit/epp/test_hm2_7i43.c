@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
- * Unit tests of the hm2_7i43 llio (host/driver/hm2_7i43) against a model of
+ * Unit tests of the hm2_7i43 llio (host/driver/backends/7i43) against a model of
  * the 7i43 (tests/unit/epp/fakes.c: CPLD while blank, hm2 EPP bridge when
  * configured; spec/hostmot2.md §17.2, §18): port setup, CPLD reset and size
  * detection, bit-reversed programming, register transfers, EPP timeouts

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
- * hm2_7i43 llio + the hostmot2 core (h6's hm2hal with its test-double HAL):
+ * hm2_7i43 llio + the hostmot2 core (hm2hal with its test-double HAL):
  * a blank 7i43 model whose configured FPGA holds the build's generated
  * IDROM of 7i43 SV8 / SVST4_4 is reset, programmed from a .BIT file through
  * the CPLD and registered; the board's HAL objects, the per-period traffic
@@ -182,7 +182,7 @@ static void test_wrong_part(void)
 
 int main(void)
 {
-    snprintf(fwdir, sizeof(fwdir), "/tmp/h8-7i43-XXXXXX");
+    snprintf(fwdir, sizeof(fwdir), "/tmp/hm2-7i43-XXXXXX");
     if (!mkdtemp(fwdir)) {
         perror("mkdtemp");
         return 1;

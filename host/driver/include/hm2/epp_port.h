@@ -127,6 +127,19 @@ int epp_port_open(epp_port_t *port, const char *spec, long ioaddr, long ioaddr_h
                   char *err, size_t errlen);
 void epp_port_close(epp_port_t *port);
 
+/* The port kinds a spec may name ("kind:ARG"), one per backend file, in the
+ * table epp_port_kinds (epp_kinds.c) that epp_port_open walks. */
+struct epp_port_kind {
+    const char *prefix; /* "raw", "ppdev", "gpiod", "sim" */
+    const char *usage;  /* "raw:ADDR" (for the unknown-kind message) */
+    /* arg: what follows "prefix:"; spec: the whole spec for messages */
+    int (*open)(epp_port_t *port, const char *arg, const char *spec, int wide, char *err,
+                size_t errlen);
+};
+extern const struct epp_port_kind epp_raw_kind, epp_ppdev_kind, epp_gpiod_kind, epp_sim_kind;
+extern const struct epp_port_kind *const epp_port_kinds[];
+extern const size_t epp_num_port_kinds;
+
 /* For backends and tests: initialize a port around a backend. */
 void epp_port_init(epp_port_t *port, const struct epp_backend *backend, void *priv,
                    const char *name, int wide);

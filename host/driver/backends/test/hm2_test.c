@@ -12,7 +12,7 @@
 
 #include "hal.h"
 #include "hm2/hostmot2.h"
-#include "hm2/test_patterns.h"
+#include "test_patterns.h"
 #include "rtapi.h"
 
 MODULE_LICENSE("GPL");

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "hm2/test_patterns.h"
+#include "test_patterns.h"
 
 #define IDROM 0x400u
 
