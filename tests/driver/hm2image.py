@@ -41,21 +41,48 @@ def build_image(board: str, pins_csv: str, modules_csv: str) -> bytes:
     put(0x100, 0x55AACAFE)
     mem[0x104:0x10C] = b"HOSTMOT2"
     put(0x10C, 0x400)
-    header = [3, 0x40, 0x1C0, 0, 0, 200, 208, len(conns), len(pins), width, clk_lo, clk_hi,
-              4, 64, 256, 256]
+    header = [
+        3,
+        0x40,
+        0x1C0,
+        0,
+        0,
+        200,
+        208,
+        len(conns),
+        len(pins),
+        width,
+        clk_lo,
+        clk_hi,
+        4,
+        64,
+        256,
+        256,
+    ]
     for i, w in enumerate(header):
         put(0x400 + 4 * i, w)
     mem[0x40C:0x414] = bname.encode()
     for i, m in enumerate(mods):
         a = 0x440 + 12 * i
-        put(a, int(m["instances"]) << 24 | int(m["clock_tag"]) << 16 | int(m["version"]) << 8
-            | int(m["gtag"]))
-        put(a + 4, int(m["strides_hex"], 16) << 24 | int(m["num_registers"]) << 16
-            | int(m["base_address_hex"], 16))
+        put(
+            a,
+            int(m["instances"]) << 24
+            | int(m["clock_tag"]) << 16
+            | int(m["version"]) << 8
+            | int(m["gtag"]),
+        )
+        put(
+            a + 4,
+            int(m["strides_hex"], 16) << 24
+            | int(m["num_registers"]) << 16
+            | int(m["base_address_hex"], 16),
+        )
         put(a + 8, int(m["mp_mask_hex"], 16))
     for i, p in enumerate(pins):
-        put(0x5C0 + 4 * i, 3 << 24 | int(p["sec_unit"]) << 16 | int(p["sec_tag"]) << 8
-            | int(p["sec_pin"]))
+        put(
+            0x5C0 + 4 * i,
+            3 << 24 | int(p["sec_unit"]) << 16 | int(p["sec_tag"]) << 8 | int(p["sec_pin"]),
+        )
     return bytes(mem)
 
 
@@ -70,8 +97,9 @@ PWM_NAMES = {"Out0": "Out0 (PWM or Up)", "Out1": "Out1 (Dir or Down)", "NotEnabl
 FUNC = {4: "Encoder", 5: "StepGen", 6: "PWMGen"}
 
 
-def expected_pin_lines(board: str, pins_csv: str, counts: dict[int, int],
-                       stepgen_width: int | None = None) -> list[str]:
+def expected_pin_lines(
+    board: str, pins_csv: str, counts: dict[int, int], stepgen_width: int | None = None
+) -> list[str]:
     """The driver's pin report for a config, from the CSV and the spec rules
     (spec §10.5 allocation, §14 line format, seed behaviour for unused
     stepgen pins when stepgen_width is not given)."""

@@ -55,15 +55,25 @@ def halrun(tmp_path: Path, script: str, *opts: str) -> subprocess.CompletedProce
     env = dict(os.environ)
     env["HAL_INSTANCE"] = "hm2-hal-" + uuid.uuid4().hex[:10]
     env["HM_BUILD"] = str(BUILD)
-    return subprocess.run([str(HALRUN), *opts, "-f", str(f)], capture_output=True, text=True,
-                          timeout=120, env=env, cwd=tmp_path)
+    return subprocess.run(
+        [str(HALRUN), *opts, "-f", str(f)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+        cwd=tmp_path,
+    )
 
 
 @pytest.mark.parametrize("n", sorted(PATTERN_MSG))
 def test_hm2_test_pattern(tmp_path: Path, n: int) -> None:
-    r = halrun(tmp_path, "loadrt hostmot2\n"
-               f"loadrt hm2_test test_pattern={n}\n"
-               "show pin hm2\nshow param hm2\nshow funct hm2\n", "-k")
+    r = halrun(
+        tmp_path,
+        "loadrt hostmot2\n"
+        f"loadrt hm2_test test_pattern={n}\n"
+        "show pin hm2\nshow param hm2\nshow funct hm2\n",
+        "-k",
+    )
     out = r.stdout + r.stderr
     assert f"hm2_test: loading HostMot2 test driver with test pattern {n}" in out
     assert f"hm2/hm2_test.0: {PATTERN_MSG[n]}\n" in out
@@ -90,9 +100,13 @@ SEED_CONFIG = "firmware=hm2/5i20/SVST8_4.BIT num_encoders=1 num_pwmgens=1 num_st
 
 
 def test_seed_config_load(tmp_path: Path, img: Path) -> None:
-    r = halrun(tmp_path, "loadrt hostmot2\n"
-               f'loadrt hm2_test image={img} config="{SEED_CONFIG}"\n'
-               "show funct\nshow param hm2_5i20.0.watchdog\n", "-s")
+    r = halrun(
+        tmp_path,
+        "loadrt hostmot2\n"
+        f'loadrt hm2_test image={img} config="{SEED_CONFIG}"\n'
+        "show funct\nshow param hm2_5i20.0.watchdog\n",
+        "-s",
+    )
     out = r.stdout + r.stderr
     assert r.returncode == 0, out
     lines = [re.sub(" +", " ", x).strip() for x in out.splitlines()]
@@ -201,14 +215,21 @@ LINUXCNC_FUNCTS_FP = {"read": "YES", "write": "YES", "read_gpio": "YES", "write_
 
 
 def test_gpio_objects_match_linuxcnc(tmp_path: Path, img: Path) -> None:
-    r = halrun(tmp_path, "loadrt hostmot2\n"
-               f'loadrt hm2_test image={img} config="num_encoders=0 num_pwmgens=0 '
-               'num_stepgens=0"\nshow pin\nshow param\nshow funct\n')
+    r = halrun(
+        tmp_path,
+        "loadrt hostmot2\n"
+        f'loadrt hm2_test image={img} config="num_encoders=0 num_pwmgens=0 '
+        'num_stepgens=0"\nshow pin\nshow param\nshow funct\n',
+    )
     out = r.stdout
     assert r.returncode == 0, out + r.stderr
     objs: dict[str, dict[str, tuple[str, str]]] = {}
-    for m in re.finditer(r"^\s*\d+\s+(bit|s32|u32|float)\s+(IN|OUT|I/O|RO|RW)\s+\S+\s+"
-                         r"hm2_5i20\.0\.gpio\.(\d{3})\.(\S+)$", out, re.M):
+    for m in re.finditer(
+        r"^\s*\d+\s+(bit|s32|u32|float)\s+(IN|OUT|I/O|RO|RW)\s+\S+\s+"
+        r"hm2_5i20\.0\.gpio\.(\d{3})\.(\S+)$",
+        out,
+        re.M,
+    ):
         objs.setdefault(m.group(3), {})[m.group(4)] = (m.group(1), m.group(2))
     assert sorted(objs) == [f"{i:03d}" for i in range(72)]
     for pin, o in objs.items():

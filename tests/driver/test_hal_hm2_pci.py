@@ -33,8 +33,14 @@ IORESOURCE_MEM = 0x200
 WINDOW = 0x10000
 
 # (vendor, device, subsystem vendor, subsystem device, {bar: (size, is_io)}, window BAR)
-PLX9030_5I20 = (0x10B5, 0x9030, 0x10B5, 0x3131, {0: (0x80, 0), 1: (0x80, 1), 2: (0x10, 1),
-                                                  5: (WINDOW, 0)}, 5)
+PLX9030_5I20 = (
+    0x10B5,
+    0x9030,
+    0x10B5,
+    0x3131,
+    {0: (0x80, 0), 1: (0x80, 1), 2: (0x10, 1), 5: (WINDOW, 0)},
+    5,
+)
 MESA_5I25 = (0x2718, 0x5125, 0x2718, 0x5125, {0: (WINDOW, 0)}, 0)
 
 
@@ -42,8 +48,12 @@ def add_device(root: Path, addr: str, kind: tuple, image: bytes | None = None) -
     vendor, device, svendor, sdevice, bars, window = kind
     d = root / "bus" / "pci" / "devices" / addr
     d.mkdir(parents=True)
-    for name, val in (("vendor", vendor), ("device", device), ("subsystem_vendor", svendor),
-                      ("subsystem_device", sdevice)):
+    for name, val in (
+        ("vendor", vendor),
+        ("device", device),
+        ("subsystem_vendor", svendor),
+        ("subsystem_device", sdevice),
+    ):
         (d / name).write_text(f"0x{val:04x}\n")
     lines = []
     for i in range(13):
@@ -76,8 +86,14 @@ def halrun(tmp_path: Path, root: Path, script: str, *opts: str) -> subprocess.Co
     env["HM_BUILD"] = str(BUILD)
     env["HM2_PCI_SYSFS_ROOT"] = str(root)
     env["HM2_FIRMWARE_PATH"] = str(tmp_path / "fw")
-    return subprocess.run([str(HALRUN), *opts, "-f", str(f)], capture_output=True, text=True,
-                          timeout=120, env=env, cwd=tmp_path)
+    return subprocess.run(
+        [str(HALRUN), *opts, "-f", str(f)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+        cwd=tmp_path,
+    )
 
 
 def squeeze(out: str) -> list[str]:
@@ -95,8 +111,7 @@ def test_no_boards(tmp_path: Path) -> None:
     root = tree(tmp_path)
     add_device(root, "0000:00:1f.0", (0x8086, 0x1234, 0x8086, 0x0001, {0: (0x1000, 0)}, 0))
     # a PLX 9030 that belongs to some other product: never touched
-    other = add_device(root, "0000:01:00.0", (0x10B5, 0x9030, 0x10B5, 0x9050,
-                                              PLX9030_5I20[4], 5))
+    other = add_device(root, "0000:01:00.0", (0x10B5, 0x9030, 0x10B5, 0x9050, PLX9030_5I20[4], 5))
     r = halrun(tmp_path, root, "loadrt hostmot2\nloadrt hm2_pci\nshow comp\n", "-k")
     out = r.stdout + r.stderr
     assert r.returncode != 0, out
@@ -118,8 +133,7 @@ def test_enable_fails(tmp_path: Path) -> None:
     r = halrun(tmp_path, root, "loadrt hostmot2\nloadrt hm2_pci\n")
     out = r.stdout + r.stderr
     assert r.returncode != 0
-    assert ("hm2_pci: skipping AnyIO board at 0000:01:00.0, failed to enable PCI device"
-            in out)
+    assert "hm2_pci: skipping AnyIO board at 0000:01:00.0, failed to enable PCI device" in out
     assert "/0000:01:00.0/enable: Is a directory" in out
     assert "hm2_pci: rtapi_app_main: No such device (-19)" in out
 
@@ -151,8 +165,10 @@ getp hm2_5i20.0.io_error
     i_disc = lines.index("hm2_pci: discovered 5i20 at 0000:02:02.0")
     # no firmware= on a programmable board: the core's warning
     assert any("no firmware specified in config modparam!" in x for x in lines)
-    want = [re.sub(" +", " ", w).strip()
-            for w in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})]
+    want = [
+        re.sub(" +", " ", w).strip()
+        for w in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})
+    ]
     assert [x for x in lines if "IO Pin " in x] == want
     i_reg = lines.index("hm2/hm2_5i20.0: registered")
     i_init = lines.index("hm2_5i20.0: initialized AnyIO board at 0000:02:02.0")
@@ -186,16 +202,22 @@ def test_two_boards_config_per_board(tmp_path: Path) -> None:
     add_device(root, "0000:03:00.0", MESA_5I25, IMG_5I25)
     add_device(root, "0000:01:00.0", MESA_5I25, IMG_5I25)
     add_device(root, "0000:02:00.0", PLX9030_5I20, IMG_5I20)
-    r = halrun(tmp_path, root, 'loadrt hostmot2\n'
-               'loadrt hm2_pci config="num_encoders=0,num_encoders=1 num_stepgens=0,'
-               'num_stepgens=1"\nshow pin\n')
+    r = halrun(
+        tmp_path,
+        root,
+        "loadrt hostmot2\n"
+        'loadrt hm2_pci config="num_encoders=0,num_encoders=1 num_stepgens=0,'
+        'num_stepgens=1"\nshow pin\n',
+    )
     out = r.stdout + r.stderr
     assert r.returncode == 0, out
     lines = squeeze(out)
     order = [x for x in lines if x.startswith("hm2_pci: discovered")]
-    assert order == ["hm2_pci: discovered 5i25 at 0000:01:00.0",
-                     "hm2_pci: discovered 5i20 at 0000:02:00.0",
-                     "hm2_pci: discovered 5i25 at 0000:03:00.0"]
+    assert order == [
+        "hm2_pci: discovered 5i25 at 0000:01:00.0",
+        "hm2_pci: discovered 5i20 at 0000:02:00.0",
+        "hm2_pci: discovered 5i25 at 0000:03:00.0",
+    ]
     assert "hm2_5i25.0: initialized AnyIO board at 0000:01:00.0" in lines
     assert "hm2_5i20.0: initialized AnyIO board at 0000:02:00.0" in lines
     assert "hm2_5i25.1: initialized AnyIO board at 0000:03:00.0" in lines
@@ -217,8 +239,7 @@ def test_more_than_eight_boards(tmp_path: Path) -> None:
     out = r.stdout + r.stderr
     assert r.returncode == 0, out
     assert "hm2_5i25.7: initialized AnyIO board at 0000:08:00.0" in out
-    assert ("hm2_pci: skipping AnyIO board at 0000:09:00.0, this driver can only handle 8"
-            in out)
+    assert "hm2_pci: skipping AnyIO board at 0000:09:00.0, this driver can only handle 8" in out
 
 
 def test_bad_image_fails_load(tmp_path: Path) -> None:
@@ -264,10 +285,18 @@ def test_5i20_firmware_without_fpga(tmp_path: Path) -> None:
         def small(tag: str, text: str) -> bytes:
             b = text.encode() + b"\0"
             return tag.encode() + struct.pack(">H", len(b)) + b
-        body = b"\xAA\x99\x55\x66" * 16
-        return (bytes([0, 9, 0x0F, 0xF0, 0x0F, 0xF0, 0x0F, 0xF0, 0x0F, 0xF0, 0, 0, 1])
-                + small("a", "T.ncd") + small("b", part) + small("c", "2026/11/24")
-                + small("d", "00:00:00") + b"e" + struct.pack(">I", len(body)) + body)
+
+        body = b"\xaa\x99\x55\x66" * 16
+        return (
+            bytes([0, 9, 0x0F, 0xF0, 0x0F, 0xF0, 0x0F, 0xF0, 0x0F, 0xF0, 0, 0, 1])
+            + small("a", "T.ncd")
+            + small("b", part)
+            + small("c", "2026/11/24")
+            + small("d", "00:00:00")
+            + b"e"
+            + struct.pack(">I", len(body))
+            + body
+        )
 
     (fw / "T.BIT").write_bytes(bit("2s200pq208"))
     (fw / "X.BIT").write_bytes(bit("3s400pq208"))
@@ -283,8 +312,10 @@ def test_5i20_firmware_without_fpga(tmp_path: Path) -> None:
     r = halrun(tmp_path, root, 'loadrt hostmot2\nloadrt hm2_pci config="firmware=hm2/5i20/X.BIT"\n')
     out = r.stdout + r.stderr
     assert r.returncode != 0
-    assert ("hm2/hm2_5i20.0: board has FPGA '2s200pq208', but the firmware in hm2/5i20/X.BIT "
-            "is for FPGA '3s400pq208'") in out
+    assert (
+        "hm2/hm2_5i20.0: board has FPGA '2s200pq208', but the firmware in hm2/5i20/X.BIT "
+        "is for FPGA '3s400pq208'"
+    ) in out
     assert "FPGA did not" not in out
 
 
@@ -294,8 +325,9 @@ HM2PINOUT = bin_path("hm2pinout")
 def pinout(root: Path, *args: str) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ)
     env["HM2_PCI_SYSFS_ROOT"] = str(root)
-    return subprocess.run([str(HM2PINOUT), *args], capture_output=True, text=True, timeout=60,
-                          env=env)
+    return subprocess.run(
+        [str(HM2PINOUT), *args], capture_output=True, text=True, timeout=60, env=env
+    )
 
 
 @pytest.mark.requires_build(HM2PINOUT)
@@ -309,8 +341,10 @@ def test_hm2pinout_pci_source(tmp_path: Path) -> None:
 
     r = pinout(root, "-c", SEED, "pci:0000:02:02.0")
     assert r.returncode == 0, r.stderr
-    want = [re.sub(" +", " ", w).strip()
-            for w in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})]
+    want = [
+        re.sub(" +", " ", w).strip()
+        for w in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})
+    ]
     assert [x for x in squeeze(r.stdout) if "IO Pin " in x] == want
     # the same report as from the image file itself; short address form
     r2 = pinout(root, "-c", SEED, "pci:02:02.0")
@@ -326,9 +360,14 @@ def test_hm2pinout_pci_source(tmp_path: Path) -> None:
     r = pinout(root, "pci:0000:03:00.0")
     assert "hm2/hm2_5i25.0: 34 I/O Pins used:" in r.stdout
 
-    for addr, msg in (("0000:01:00.0", "hm2pinout: PCI device 0000:01:00.0 (8086:1234, subsystem "
-                                       "8086:0001) is not a Mesa Anything-I/O board"),
-                      ("0000:09:00.0", "hm2pinout: no PCI device 0000:09:00.0")):
+    for addr, msg in (
+        (
+            "0000:01:00.0",
+            "hm2pinout: PCI device 0000:01:00.0 (8086:1234, subsystem "
+            "8086:0001) is not a Mesa Anything-I/O board",
+        ),
+        ("0000:09:00.0", "hm2pinout: no PCI device 0000:09:00.0"),
+    ):
         r = pinout(root, f"pci:{addr}")
         assert r.returncode == 1 and msg in r.stderr and r.stdout == ""
     empty = tree(tmp_path / "e")
@@ -355,13 +394,20 @@ def test_generated_5i25_firmware_over_pci(tmp_path: Path) -> None:
     root = tree(tmp_path)
     add_device(root, "0000:01:00.0", MESA_5I25, bytes(mem))
     cfg = "num_encoders=1 num_stepgens=2"
-    ref = subprocess.run([str(HM2PINOUT), "-b", "5i25", "-c", cfg, str(GENERATED_5I25)],
-                         capture_output=True, text=True, timeout=60)
+    ref = subprocess.run(
+        [str(HM2PINOUT), "-b", "5i25", "-c", cfg, str(GENERATED_5I25)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert ref.returncode == 0, ref.stderr
     want = [x for x in squeeze(ref.stdout) if "IO Pin " in x]
     assert len(want) == 34
-    r = halrun(tmp_path, root, f'loadrt hostmot2\nloadrt hm2_pci config="{cfg}"\n'
-               "show pin hm2_5i25.0.stepgen\n")
+    r = halrun(
+        tmp_path,
+        root,
+        f'loadrt hostmot2\nloadrt hm2_pci config="{cfg}"\n' "show pin hm2_5i25.0.stepgen\n",
+    )
     out = r.stdout + r.stderr
     assert r.returncode == 0, out
     assert [x for x in squeeze(out) if "IO Pin " in x] == want

@@ -108,25 +108,38 @@ def test_other_boards(tmp_path: Path, board: str, pins: str, mods: str) -> None:
 
 
 HM2GEN_CASES = [
-    ("5i20", "SVST8_4", "PIN_SVST8_4_72.csv", "num_encoders=3 num_pwmgens=2 num_stepgens=1",
-     {4: 3, 6: 2, 5: 1}),
+    (
+        "5i20",
+        "SVST8_4",
+        "PIN_SVST8_4_72.csv",
+        "num_encoders=3 num_pwmgens=2 num_stepgens=1",
+        {4: 3, 6: 2, 5: 1},
+    ),
     ("7i43", "SV8", "PIN_SV8_48.csv", "num_encoders=3 num_pwmgens=2", {4: 3, 6: 2}),
     ("5i25", "7I76x2", "PIN_7I76x2_34.csv", "num_encoders=1 num_stepgens=7", {4: 1, 5: 7}),
 ]
 
 
 @pytest.mark.parametrize("board,fw,pins,config,counts", HM2GEN_CASES)
-def test_hm2gen_idrom_cross_check(tmp_path: Path, board: str, fw: str, pins: str, config: str,
-                                  counts: dict[int, int]) -> None:
+def test_hm2gen_idrom_cross_check(
+    tmp_path: Path, board: str, fw: str, pins: str, config: str, counts: dict[int, int]
+) -> None:
     """hm2gen's IDROM image (another engineer's generator) must give the
     same report as the image built here from the stock CSV."""
     hexfile = BUILD / "generated" / board / fw / f"{fw}.idrom.hex"  # made by the build
     if not hexfile.exists():
         desc = ROOT / "hdl" / "hostmot2" / "firmware" / board / f"{fw}.toml"
-        assert (ROOT / "tools" / "hm2gen").is_dir() and desc.exists(), f"{desc}: hm2gen input missing"
+        assert (
+            ROOT / "tools" / "hm2gen"
+        ).is_dir() and desc.exists(), f"{desc}: hm2gen input missing"
         out = tmp_path / "gen"
-        g = subprocess.run([sys.executable, "-m", "hm2gen", "-q", "-o", str(out), str(desc)],
-                           cwd=ROOT / "tools", capture_output=True, text=True, timeout=120)
+        g = subprocess.run(
+            [sys.executable, "-m", "hm2gen", "-q", "-o", str(out), str(desc)],
+            cwd=ROOT / "tools",
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
         assert g.returncode == 0, g.stderr
         hexfile = out / board / fw / f"{fw}.idrom.hex"
     r = run("-b", board, "-c", config, str(hexfile))

@@ -30,12 +30,19 @@ def rows() -> dict[str, list[list[str]]]:
 
 
 # ---- StepGen (§10.1) ----
-SCENARIOS = [(50, 10, 1.0, 0.001, 0), (0, 10, 1.0, 0.001, 0), (200, 3, -2.0, 0.001, 0),
-             (20, 10, 0.5, 0.0005, 1), (1000, 100, 0.3, 0.002, 1), (0, 5, -0.7, 0.001, 1)]
+SCENARIOS = [
+    (50, 10, 1.0, 0.001, 0),
+    (0, 10, 1.0, 0.001, 0),
+    (200, 3, -2.0, 0.001, 0),
+    (20, 10, 0.5, 0.0005, 1),
+    (1000, 100, 0.3, 0.002, 1),
+    (0, 5, -0.7, 0.001, 1),
+]
 
 
-def position_control(cmd: float, old: float, fb: float, vfb: float, maxaccel: float,
-                     T: float) -> float:
+def position_control(
+    cmd: float, old: float, fb: float, vfb: float, maxaccel: float, T: float
+) -> float:
     ff = (cmd - old) / T
     verr = vfb - ff
     if verr > 0:

@@ -30,8 +30,10 @@ HM2CORE = [
     DRV / "llio" / "llio.c",
     DRV / "llio" / "boards.c",
     DRV / "llio" / "llio_image.c",
-    *(DRV / "hostmot2" / f"{n}.c"
-      for n in ("msg", "names", "config", "idrom", "md", "pins", "bitfile", "probe", "math")),
+    *(
+        DRV / "hostmot2" / f"{n}.c"
+        for n in ("msg", "names", "config", "idrom", "md", "pins", "bitfile", "probe", "math")
+    ),
 ]
 C_FLAGS = ["-I", str(DRV / "include"), "-I", str(ROOT / "host" / "hal" / "include")]
 CXX_FLAGS = ["-std=c++17", "-I", str(VB / "src"), "-I", str(VB / "include"), "-I", str(VB / "epp")]
@@ -39,12 +41,21 @@ CXX_FLAGS = ["-std=c++17", "-I", str(VB / "src"), "-I", str(VB / "include"), "-I
 TARGETS: dict[str, tuple[str, list[str], list[Path]]] = {
     "hm2_bitfile": ("clang", C_FLAGS, [HERE / "fuzz_hm2_bitfile.c", *HM2CORE]),
     "hm2_idrom": ("clang", C_FLAGS, [HERE / "fuzz_hm2_idrom.c", *HM2CORE]),
-    "vboard_fwimage": ("clang++", CXX_FLAGS, [HERE / "fuzz_vboard_fwimage.cpp", VB / "src" / "fwimage.cpp"]),
+    "vboard_fwimage": (
+        "clang++",
+        CXX_FLAGS,
+        [HERE / "fuzz_vboard_fwimage.cpp", VB / "src" / "fwimage.cpp"],
+    ),
     "vboard_server": (
         "clang++",
         CXX_FLAGS + ["-pthread"],
-        [HERE / "fuzz_vboard_server.cpp", VB / "src" / "server.cpp", VB / "src" / "pins.cpp",
-         VB / "src" / "fwimage.cpp", VB / "epp" / "epp_port_board.cpp"],
+        [
+            HERE / "fuzz_vboard_server.cpp",
+            VB / "src" / "server.cpp",
+            VB / "src" / "pins.cpp",
+            VB / "src" / "fwimage.cpp",
+            VB / "epp" / "epp_port_board.cpp",
+        ],
     ),
 }
 
@@ -59,8 +70,18 @@ def build(name: str, out: Path) -> Path:
     cc = shutil.which(compiler)
     assert cc is not None, f"{compiler} is required for the fuzz tests (apt-get install clang)"
     exe = out / f"fuzz_{name}"
-    cmd = [cc, "-g", "-O1", "-fsanitize=fuzzer,address,undefined", "-fno-sanitize-recover=all",
-           *flags, *map(str, sources), "-lm", "-o", str(exe)]
+    cmd = [
+        cc,
+        "-g",
+        "-O1",
+        "-fsanitize=fuzzer,address,undefined",
+        "-fno-sanitize-recover=all",
+        *flags,
+        *map(str, sources),
+        "-lm",
+        "-o",
+        str(exe),
+    ]
     r = subprocess.run(cmd, capture_output=True, text=True)
     assert r.returncode == 0, f"fuzz target {name} did not build:\n{' '.join(cmd)}\n{r.stderr}"
     return exe
@@ -74,9 +95,19 @@ def test_fuzz_target(name: str, bindir: Path, tmp_path: Path) -> None:
     work = tmp_path / "corpus"  # new inputs go here, the kept corpus stays as it is
     shutil.copytree(seeds, work)
     r = subprocess.run(
-        [str(exe), f"-max_total_time={SECONDS}", "-timeout=5", "-max_len=4096",
-         "-rss_limit_mb=2048", f"-artifact_prefix={tmp_path}/", str(work)],
-        capture_output=True, text=True, cwd=tmp_path, timeout=SECONDS + 300,
+        [
+            str(exe),
+            f"-max_total_time={SECONDS}",
+            "-timeout=5",
+            "-max_len=4096",
+            "-rss_limit_mb=2048",
+            f"-artifact_prefix={tmp_path}/",
+            str(work),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=SECONDS + 300,
     )
     assert r.returncode == 0, f"{name}: libFuzzer found a problem:\n{r.stderr[-6000:]}"
     assert "Done " in r.stderr, r.stderr[-2000:]

@@ -59,8 +59,10 @@ def test_pwm_in_clockhigh_periods(sockdir: Path) -> None:
             c.write(0x1200, 1 << out0)
             c.write(0x1100, 1 << out0)
             rate = 32768  # PWMCLK = ClockHigh / 2
-            value = 128   # of 512 (9-bit sawtooth)
-            c.write_bursts([(0x4100, [0]), (0x4200, [rate]), (0x4000, [value << 16]), (0x4400, [1])])
+            value = 128  # of 512 (9-bit sawtooth)
+            c.write_bursts(
+                [(0x4100, [0]), (0x4200, [rate]), (0x4000, [value << 16]), (0x4400, [1])]
+            )
             c.advance(50_000)
             c.probe_reset(out0)
             c.advance(102_400)

@@ -44,18 +44,35 @@ def _assert_blank(c: VBoardClient) -> None:
 
 
 def test_the_build_makes_bit_files_for_every_firmware() -> None:
-    for board, fw in [("5i20", "SVST8_4"), ("5i20", "SV12"), ("5i25", "7I76x2"), ("7i43", "SV8"), ("7i43", "SVST4_4")]:
+    for board, fw in [
+        ("5i20", "SVST8_4"),
+        ("5i20", "SV12"),
+        ("5i25", "7I76x2"),
+        ("7i43", "SV8"),
+        ("7i43", "SVST4_4"),
+    ]:
         bit = vboard.firmware_file(board, fw).read_bytes()
         desc = fw_json(board, fw)
         assert bit[:13] == vbfw.BIT_HEADER
-        assert b"b" + struct.pack(">H", len(desc["board"]["fpga_part"]) + 1) + desc["board"]["fpga_part"].encode() + b"\0" in bit
+        assert (
+            b"b"
+            + struct.pack(">H", len(desc["board"]["fpga_part"]) + 1)
+            + desc["board"]["fpga_part"].encode()
+            + b"\0"
+            in bit
+        )
         img = vboard.bit_payload(bit)
         magic, version, length, crc = struct.unpack_from("<IIII", img)
         assert (magic, version, length) == (0x57464256, 1, len(img))
         assert img[16:32].rstrip(b"\0").decode() == board
         assert img[32:64].rstrip(b"\0").decode() == fw
         assert struct.unpack_from("<I", img, 64)[0] == zlib.crc32(img[:64])
-        words = [int(w, 16) for w in (vboard.build_dir() / "generated" / board / fw / f"{fw}.idrom.hex").read_text().split()]
+        words = [
+            int(w, 16)
+            for w in (vboard.build_dir() / "generated" / board / fw / f"{fw}.idrom.hex")
+            .read_text()
+            .split()
+        ]
         assert crc == zlib.crc32(struct.pack(f"<{len(words)}I", *words))
 
 
@@ -87,15 +104,34 @@ def _image(board: str = "5i20", fw: str = "SVST8_4", crc: int | None = None) -> 
         (lambda: _payload("5i20", "SVST8_4")[:40], "truncated: 40 bytes"),
         (lambda: _payload("5i20", "SVST8_4")[:67], "truncated"),
         (lambda: _payload("5i20", "SVST8_4") + b"\0", "longer than its header says"),
-        (lambda: _payload("5i20", "SVST8_4")[:20] + b"X" + _payload("5i20", "SVST8_4")[21:], "corrupt: CRC-32"),
+        (
+            lambda: _payload("5i20", "SVST8_4")[:20] + b"X" + _payload("5i20", "SVST8_4")[21:],
+            "corrupt: CRC-32",
+        ),
         (lambda: b"\xff" * 200, "bad magic"),
         (lambda: b"", "truncated: 0 bytes"),
-        (lambda: _image(fw="SVST9_9"), "firmware image SVST9_9 is not built into this vboard for board 5i20"),
-        (lambda: _image(crc=0x12345678), "does not match the Verilated firmware (IDROM CRC 0x12345678"),
+        (
+            lambda: _image(fw="SVST9_9"),
+            "firmware image SVST9_9 is not built into this vboard for board 5i20",
+        ),
+        (
+            lambda: _image(crc=0x12345678),
+            "does not match the Verilated firmware (IDROM CRC 0x12345678",
+        ),
         (lambda: struct.pack("<II", 0x57464256, 2) + b"\0" * 60, "format version 2"),
     ],
-    ids=["wrong-board", "truncated", "truncated-1", "trailing", "corrupt", "not-vbfw", "empty",
-         "unknown-fw", "other-build", "version"],
+    ids=[
+        "wrong-board",
+        "truncated",
+        "truncated-1",
+        "trailing",
+        "corrupt",
+        "not-vbfw",
+        "empty",
+        "unknown-fw",
+        "other-build",
+        "version",
+    ],
 )
 def test_bad_images_leave_the_board_blank(blank: VBoardClient, image: object, text: str) -> None:
     data = image() if callable(image) else image

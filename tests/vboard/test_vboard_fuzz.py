@@ -12,9 +12,25 @@ import vbhelpers  # noqa: F401  (puts tests/common on sys.path)
 import vboard
 from vboard import VBoardClient
 
-TYPES = [vboard.HELLO, vboard.READ, vboard.WRITE, vboard.EPP, vboard.EPP_STALL, vboard.CONFIG,
-         vboard.TIME, vboard.PROBE, vboard.DRIVE, vboard.QUAD, vboard.LOOP, vboard.PROBE_RESET,
-         vboard.DUMP, 0x00, 0x12, 0x7F, 0xFFFF]
+TYPES = [
+    vboard.HELLO,
+    vboard.READ,
+    vboard.WRITE,
+    vboard.EPP,
+    vboard.EPP_STALL,
+    vboard.CONFIG,
+    vboard.TIME,
+    vboard.PROBE,
+    vboard.DRIVE,
+    vboard.QUAD,
+    vboard.LOOP,
+    vboard.PROBE_RESET,
+    vboard.DUMP,
+    0x00,
+    0x12,
+    0x7F,
+    0xFFFF,
+]
 
 
 def _payload(rng: random.Random, rtype: int) -> bytes:
@@ -23,27 +39,43 @@ def _payload(rng: random.Random, rtype: int) -> bytes:
         # Never a random path: the board would create that file.
         return struct.pack("<I", 0) if choice < 0.5 else b"\x01\x00"
     if choice < 0.4:
-        return bytes(rng.getrandbits(8) for _ in range(rng.choice([0, 1, 3, 4, 7, 8, 12, 16, 24, 33])))
+        return bytes(
+            rng.getrandbits(8) for _ in range(rng.choice([0, 1, 3, 4, 7, 8, 12, 16, 24, 33]))
+        )
     # Plausible structures with random fields, small enough to run fast.
     if rtype == vboard.READ:
-        return b"".join(struct.pack("<II", rng.randrange(0, 0x10010, 2), rng.choice([0, 4, 6, 8, 64, 0x20000]))
-                        for _ in range(rng.randint(0, 3)))
+        return b"".join(
+            struct.pack("<II", rng.randrange(0, 0x10010, 2), rng.choice([0, 4, 6, 8, 64, 0x20000]))
+            for _ in range(rng.randint(0, 3))
+        )
     if rtype == vboard.WRITE:
         size = rng.choice([0, 4, 8, 5])
         return struct.pack("<II", rng.randrange(0, 0x10000, 4), size) + bytes(rng.randint(0, size))
     if rtype == vboard.TIME:
         return struct.pack("<IIQ", rng.randint(0, 3), 0, rng.choice([0, 1, 1000, 2**64 - 1]))
     if rtype in (vboard.PROBE, vboard.PROBE_RESET):
-        return struct.pack("<II", rng.choice([0, 5, 71, 72, 2**32 - 1]), rng.choice([0, 1, 72, 2**32 - 1]))
+        return struct.pack(
+            "<II", rng.choice([0, 5, 71, 72, 2**32 - 1]), rng.choice([0, 1, 72, 2**32 - 1])
+        )
     if rtype == vboard.DRIVE:
         return struct.pack("<II", rng.randint(0, 80), rng.randint(0, 3))
     if rtype == vboard.QUAD:
-        return struct.pack("<IIIId", rng.randint(0, 80), rng.randint(0, 80), rng.choice([2**32 - 1, 5, 90]),
-                           rng.randint(0, 10), rng.choice([0.0, 1e5, -1e5, float("nan"), 1e12]))
+        return struct.pack(
+            "<IIIId",
+            rng.randint(0, 80),
+            rng.randint(0, 80),
+            rng.choice([2**32 - 1, 5, 90]),
+            rng.randint(0, 10),
+            rng.choice([0.0, 1e5, -1e5, float("nan"), 1e12]),
+        )
     if rtype == vboard.LOOP:
-        return struct.pack("<IIII", rng.randint(0, 80), rng.choice([rng.randint(0, 80), 2**32 - 1]), 1, 0)
+        return struct.pack(
+            "<IIII", rng.randint(0, 80), rng.choice([rng.randint(0, 80), 2**32 - 1]), 1, 0
+        )
     if rtype == vboard.CONFIG:
-        return struct.pack("<II", rng.choice([0, 2, 9]), 0) + bytes(rng.getrandbits(8) for _ in range(rng.randint(0, 80)))
+        return struct.pack("<II", rng.choice([0, 2, 9]), 0) + bytes(
+            rng.getrandbits(8) for _ in range(rng.randint(0, 80))
+        )
     return b""
 
 

@@ -30,7 +30,14 @@ from vboard import (
 
 IO_DATA, IO_DDR, IO_ALT = 0x1000, 0x1100, 0x1200
 SG_RATE, SG_MODE, SG_DIRSETUP, SG_DIRHOLD, SG_PW, SG_PI, SG_DDS = (
-    0x2000, 0x2200, 0x2300, 0x2400, 0x2500, 0x2600, 0x2900)
+    0x2000,
+    0x2200,
+    0x2300,
+    0x2400,
+    0x2500,
+    0x2600,
+    0x2900,
+)
 ENC_COUNT = 0x3000
 T_LOW = 30  # ns, ClockLow = 100/3 MHz
 
@@ -86,7 +93,9 @@ def test_loops_wire_outputs_into_inputs(client: VBoardClient) -> None:
 def test_loop_file_and_command_line_loops(sockdir: Path) -> None:
     f = sockdir / "loops.txt"
     f.write_text("# stepgen 0 step/dir into encoder 0 A/B\n48:3   49:2:inv\n\n")
-    with VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4", ["--loop-file", str(f), "--loop", "4:10"]) as p:
+    with VBoardProcess(
+        sockdir / "b.sock", "5i20", "SVST8_4", ["--loop-file", str(f), "--loop", "4:10"]
+    ) as p:
         with p.client() as c:
             assert [c.pin(i).ext for i in (3, 2, 10)] == [EXT_LOOP] * 3
             c.write(IO_DDR, 0x10)
@@ -100,8 +109,16 @@ def test_loop_file_and_command_line_loops(sockdir: Path) -> None:
 def _setup_stepgen0(c: VBoardClient, rate: int, pw: int = 3, pi: int = 3) -> None:
     c.write(IO_ALT + 8, 0x3)  # port 2 bits 0,1 = pins 48,49: StepGen 0 Step/Dir
     c.write(IO_DDR + 8, 0x3)
-    c.write_bursts([(SG_MODE, [0]), (SG_DIRSETUP, [3]), (SG_DIRHOLD, [3]), (SG_PW, [pw]),
-                    (SG_PI, [pi]), (SG_RATE, [rate])])
+    c.write_bursts(
+        [
+            (SG_MODE, [0]),
+            (SG_DIRSETUP, [3]),
+            (SG_DIRHOLD, [3]),
+            (SG_PW, [pw]),
+            (SG_PI, [pi]),
+            (SG_RATE, [rate]),
+        ]
+    )
     c.write(SG_DDS, 1 << 31)  # a basic-rate tick every 2nd ClockLow cycle
 
 

@@ -29,7 +29,10 @@ def test_hello_and_idrom_match_the_generated_firmware(sockdir: Path, board: str,
         assert (h.version, h.bus, h.state) == (1, vboard.BUS_LOCAL, vboard.STATE_CONFIGURED)
         assert (h.board, h.firmware, h.fpga_part) == (board, fw, desc["board"]["fpga_part"])
         assert h.io_pins == desc["board"]["io_width"]
-        assert (h.clock_low_hz, h.clock_high_hz) == (desc["clocks"]["low_hz"], desc["clocks"]["high_hz"])
+        assert (h.clock_low_hz, h.clock_high_hz) == (
+            desc["clocks"]["low_hz"],
+            desc["clocks"]["high_hz"],
+        )
         assert h.lockstep
         assert p.ready_line == f"vboard: ready on {sockdir / 'b.sock'} ({board}, {fw})"
         # The ID block (cookie, name, IDROM pointer) and the whole IDROM.
@@ -243,7 +246,8 @@ def test_pipelined_requests_are_answered_in_order(client: VBoardClient) -> None:
     s = _raw(client.path)
     n = 3000
     reqs = b"".join(
-        vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.READ, 0, 8, seq, 0) + struct.pack("<II", 0x100, 4)
+        vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.READ, 0, 8, seq, 0)
+        + struct.pack("<II", 0x100, 4)
         for seq in range(1, n + 1)
     )
     # Send from a thread: the board's replies fill the socket while we send.
@@ -271,7 +275,10 @@ def test_client_disconnect_mid_request(client: VBoardClient) -> None:
 def test_client_that_vanishes_before_its_reply(client: VBoardClient) -> None:
     s = _raw(client.path)
     s.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))
-    s.sendall(vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.READ, 0, 8, 1, 0) + struct.pack("<II", 0x400, 4096))
+    s.sendall(
+        vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.READ, 0, 8, 1, 0)
+        + struct.pack("<II", 0x400, 4096)
+    )
     s.close()
     assert client.read32(0x100) == 0x55AACAFE
 
@@ -288,7 +295,10 @@ def test_sigterm_ends_a_long_request(sockdir: Path) -> None:
     p = VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4")
     s = _raw(p.socket_path)
     # 100 s of board time: minutes of wall time.
-    s.sendall(vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.TIME, 0, 16, 1, 0) + struct.pack("<IIQ", 0, 0, 10**11))
+    s.sendall(
+        vboard.HEADER.pack(vboard.REQ_MAGIC, vboard.TIME, 0, 16, 1, 0)
+        + struct.pack("<IIQ", 0, 0, 10**11)
+    )
     time.sleep(0.3)
     t0 = time.monotonic()
     assert p.stop(timeout=20) == 0
@@ -305,7 +315,9 @@ def test_stale_socket_file_is_replaced_but_a_live_one_is_not(sockdir: Path) -> N
     with VBoardProcess(path, "5i20", "SVST8_4"):
         r = subprocess.run(
             [str(vboard.vboard_binary()), "--socket", str(path), "--board", "5i20"],
-            capture_output=True, text=True, timeout=30,
+            capture_output=True,
+            text=True,
+            timeout=30,
         )
         assert r.returncode == 1
         assert "in use by another running board" in r.stderr
@@ -320,23 +332,41 @@ def test_stale_socket_file_is_replaced_but_a_live_one_is_not(sockdir: Path) -> N
         (["--socket", "S", "--board", "5i20", "--loop", "1-2"], "bad loop '1-2'"),
         (["--socket", "S", "--board", "5i20", "--loop", "1:99"], "I/O pin 99 does not exist"),
         (["--socket", "S", "--board", "5i20", "--quad", "1:2"], "bad quadrature source"),
-        (["--socket", "S", "--board", "5i20", "--loop-file", "/nonexistent"], "cannot read loop file"),
-        (["--socket", "S", "--board", "5i20", "--firmware", "SVST8_4", "--dump", "/nonexistent/x.vcd"],
-         "cannot open /nonexistent/x.vcd"),
+        (
+            ["--socket", "S", "--board", "5i20", "--loop-file", "/nonexistent"],
+            "cannot read loop file",
+        ),
+        (
+            [
+                "--socket",
+                "S",
+                "--board",
+                "5i20",
+                "--firmware",
+                "SVST8_4",
+                "--dump",
+                "/nonexistent/x.vcd",
+            ],
+            "cannot open /nonexistent/x.vcd",
+        ),
         (["--socket", "S", "--board", "5i20", "extra"], "unexpected argument 'extra'"),
         (["--socket", "S", "--board", "5i20", "--spin", "-1"], "bad --spin '-1'"),
     ],
 )
 def test_command_line_errors(sockdir: Path, args: list[str], text: str) -> None:
     args = [a.replace("S", str(sockdir / "s.sock")) if a == "S" else a for a in args]
-    r = subprocess.run([str(vboard.vboard_binary()), *args], capture_output=True, text=True, timeout=30)
+    r = subprocess.run(
+        [str(vboard.vboard_binary()), *args], capture_output=True, text=True, timeout=30
+    )
     assert r.returncode != 0
     assert text in r.stderr
     assert not (sockdir / "s.sock").exists()
 
 
 def test_spin_serves_like_the_default(sockdir: Path) -> None:
-    with VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4", ["--spin", "100"]) as p, p.client() as c:
+    with VBoardProcess(
+        sockdir / "b.sock", "5i20", "SVST8_4", ["--spin", "100"]
+    ) as p, p.client() as c:
         t0 = c.now()
         for _ in range(20):
             assert c.read32(0x100) == 0x55AACAFE
@@ -350,8 +380,12 @@ def test_the_c_client_talks_to_the_board(svst: VBoardProcess) -> None:
     """bin/vboard-bench speaks through the project's C client (vbclient)."""
     bench = vboard.build_dir() / "bin" / "vboard-bench"
     assert bench.exists(), f"{bench} not built (run `make build`)"
-    r = subprocess.run([str(bench), svst.socket_path, "servo", "20", "100000"], capture_output=True,
-                       text=True, timeout=60)
+    r = subprocess.run(
+        [str(bench), svst.socket_path, "servo", "20", "100000"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert r.returncode == 0, r.stderr
     assert "per read+write (20 cycles, 100000 ns advance each)" in r.stdout
     with svst.client() as c:
@@ -359,20 +393,29 @@ def test_the_c_client_talks_to_the_board(svst: VBoardProcess) -> None:
         assert 2_000_000 <= c.now() < 2_100_000
         # Its watchdog pets (0xE00) never let the (disabled) watchdog bite.
         assert c.read32(0x0D00) & 1 == 0
-    r = subprocess.run([str(bench), svst.socket_path, "speed", "0.1"], capture_output=True, text=True,
-                       timeout=60)
+    r = subprocess.run(
+        [str(bench), svst.socket_path, "speed", "0.1"], capture_output=True, text=True, timeout=60
+    )
     assert r.returncode == 0 and "M ClockLow cycles/s" in r.stdout, r.stderr
 
 
 def test_help_and_unknown_option() -> None:
-    r = subprocess.run([str(vboard.vboard_binary()), "--help"], capture_output=True, text=True, timeout=30)
+    r = subprocess.run(
+        [str(vboard.vboard_binary()), "--help"], capture_output=True, text=True, timeout=30
+    )
     assert r.returncode == 0 and r.stdout.startswith("usage: vboard --socket PATH --board NAME")
-    r = subprocess.run([str(vboard.vboard_binary()), "--bogus"], capture_output=True, text=True, timeout=30)
-    assert r.returncode == 2 and "unrecognized option '--bogus'" in r.stderr and "usage:" in r.stderr
+    r = subprocess.run(
+        [str(vboard.vboard_binary()), "--bogus"], capture_output=True, text=True, timeout=30
+    )
+    assert (
+        r.returncode == 2 and "unrecognized option '--bogus'" in r.stderr and "usage:" in r.stderr
+    )
 
 
 def test_list(sockdir: Path) -> None:
-    r = subprocess.run([str(vboard.vboard_binary()), "--list"], capture_output=True, text=True, timeout=30)
+    r = subprocess.run(
+        [str(vboard.vboard_binary()), "--list"], capture_output=True, text=True, timeout=30
+    )
     assert r.returncode == 0
     assert "5i20 (2s200pq208): SV12 SVST8_4" in r.stdout
     assert "5i25 (6slx9tqg144): 7I76x2" in r.stdout
@@ -411,8 +454,14 @@ def test_one_epp_request_is_bounded(sockdir: Path) -> None:
         t0 = c.now()
         for ops, what in [
             ([vboard.EppOp(4, n=(1 << 20) + 1)], "bus cycles"),
-            ([vboard.EppOp(4, n=1 << 19), vboard.EppOp(4, n=1 << 19), vboard.EppOp(1)], "bus cycles"),
-            ([vboard.EppOp(10, val=600_000_000), vboard.EppOp(10, val=400_000_001)], "more than 1 s"),
+            (
+                [vboard.EppOp(4, n=1 << 19), vboard.EppOp(4, n=1 << 19), vboard.EppOp(1)],
+                "bus cycles",
+            ),
+            (
+                [vboard.EppOp(10, val=600_000_000), vboard.EppOp(10, val=400_000_001)],
+                "more than 1 s",
+            ),
         ]:
             with pytest.raises(VBoardError, match=what) as e:
                 c.epp(ops)

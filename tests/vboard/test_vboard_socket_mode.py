@@ -52,9 +52,18 @@ def test_socket_mode_option(sockdir: Path, mask: int) -> None:
 @pytest.mark.parametrize("bad", ["0400", "999", "", "0x1B6", "01777", "rw"])
 def test_bad_socket_mode(sockdir: Path, bad: str) -> None:
     r = subprocess.run(
-        [str(vboard.vboard_binary()), "--socket", str(sockdir / "b.sock"), "--board", "5i20",
-         "--socket-mode", bad],
-        capture_output=True, text=True, timeout=30,
+        [
+            str(vboard.vboard_binary()),
+            "--socket",
+            str(sockdir / "b.sock"),
+            "--board",
+            "5i20",
+            "--socket-mode",
+            bad,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=30,
     )
     assert r.returncode == 2
     assert f"vboard: bad --socket-mode '{bad}'" in r.stderr

@@ -44,7 +44,11 @@ SG0_STEP, SG0_DIR = 48, 49
 
 
 def load(
-    sock: Path, config: str = SEED_CONFIG, period_ns: int = 1_000_000, board: str = "5i20", extra: str = ""
+    sock: Path,
+    config: str = SEED_CONFIG,
+    period_ns: int = 1_000_000,
+    board: str = "5i20",
+    extra: str = "",
 ) -> str:
     """HAL lines: hostmot2 + hm2_sim on sock, a servo thread with read/write."""
     return (
@@ -88,7 +92,12 @@ def halrun(
         env.pop(name, None)
     opts = ["-S"] if simclock else []
     r = subprocess.run(
-        [str(HALRUN), *opts, "-f", str(f)], capture_output=True, text=True, timeout=timeout, env=env, cwd=tmp
+        [str(HALRUN), *opts, "-f", str(f)],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=env,
+        cwd=tmp,
     )
     out = r.stdout + r.stderr
     for bad in ("AddressSanitizer", "LeakSanitizer", "runtime error:"):

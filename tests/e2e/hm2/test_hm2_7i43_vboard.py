@@ -7,6 +7,7 @@ bit-reversed, reads the IDROM over EPP and runs its servo cycle there."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -38,7 +39,7 @@ def hello(sock: Path) -> vboard.Hello:
 
 
 @pytest.fixture
-def blank(tmp_path: Path):  # type: ignore[no-untyped-def]
+def blank(tmp_path: Path) -> Iterator[vboard.VBoardProcess]:
     with vboard.VBoardProcess(tmp_path / "b.sock", "7i43") as vb:
         yield vb
 
@@ -50,7 +51,9 @@ def test_load_through_the_cpld_and_pinout(tmp_path: Path, blank: vboard.VBoardPr
     r = halrun(tmp_path, load(sock, config) + "simrun 2ms\n")
     out = r.stdout + r.stderr
     assert r.returncode == 0, out
-    want = [squeeze(s) for s in expected_pin_lines("7i43", "PIN_SVST4_4_48.csv", {4: 2, 6: 1, 5: 3})]
+    want = [
+        squeeze(s) for s in expected_pin_lines("7i43", "PIN_SVST4_4_48.csv", {4: 2, 6: 1, 5: 3})
+    ]
     assert pin_lines(out) == want
     h = hello(sock)
     assert (h.state, h.firmware) == (vboard.STATE_CONFIGURED, "SVST4_4")
@@ -103,8 +106,11 @@ def test_bad_image_leaves_the_7i43_blank(tmp_path: Path, blank: vboard.VBoardPro
     bad = bytearray(good)
     bad[-10] ^= 0x40  # inside the image: its CRC no longer matches
     (fwdir / "X.BIT").write_bytes(bytes(bad))
-    r = halrun(tmp_path, load(sock, "firmware=hm2/7i43/X.BIT"),
-               extra_env={"HM2_FIRMWARE_PATH": str(tmp_path / "fw")})
+    r = halrun(
+        tmp_path,
+        load(sock, "firmware=hm2/7i43/X.BIT"),
+        extra_env={"HM2_FIRMWARE_PATH": str(tmp_path / "fw")},
+    )
     out = r.stdout + r.stderr
     assert r.returncode != 0
     assert "hm2_7i43" in out

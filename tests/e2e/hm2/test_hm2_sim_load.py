@@ -6,6 +6,7 @@ firmware files and bad module arguments (clear error, board stays blank)."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 import re
 import subprocess
 from pathlib import Path
@@ -52,7 +53,7 @@ def hello(sock: Path) -> vboard.Hello:
 
 
 @pytest.fixture
-def blank(tmp_path: Path):  # type: ignore[no-untyped-def]
+def blank(tmp_path: Path) -> Iterator[vboard.VBoardProcess]:
     with vboard.VBoardProcess(tmp_path / "b.sock", "5i20") as vb:
         yield vb
 
@@ -64,7 +65,9 @@ def test_firmware_load_and_seed_pinout(tmp_path: Path, blank: vboard.VBoardProce
     assert r.returncode == 0, r.stdout + r.stderr
     out = r.stdout + r.stderr
     got = pin_lines(out)
-    want = [squeeze(s) for s in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})]
+    want = [
+        squeeze(s) for s in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})
+    ]
     assert got == want
     lines = {squeeze(line) for line in out.splitlines()}
     for line in SEED.splitlines():
@@ -89,21 +92,34 @@ def test_hm2pinout_sim_source(tmp_path: Path) -> None:
     tool = BUILD / "bin" / "hm2pinout"
     with vboard.VBoardProcess(tmp_path / "b.sock", "5i20", "SVST8_4") as vb:
         cfg = "num_encoders=1 num_pwmgens=1 num_stepgens=3"
-        r = subprocess.run([str(tool), "-c", cfg, f"sim:{vb.socket_path}"], capture_output=True,
-                           text=True, timeout=60)
+        r = subprocess.run(
+            [str(tool), "-c", cfg, f"sim:{vb.socket_path}"],
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
         assert r.returncode == 0, r.stderr
-        want = [squeeze(s) for s in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})]
+        want = [
+            squeeze(s) for s in expected_pin_lines("5i20", "PIN_SVST8_4_72.csv", {4: 1, 6: 1, 5: 3})
+        ]
         assert pin_lines(r.stdout) == want
-        p = subprocess.run([str(tool), "-p", f"sim:{vb.socket_path}"], capture_output=True, text=True,
-                           timeout=60)
+        p = subprocess.run(
+            [str(tool), "-p", f"sim:{vb.socket_path}"], capture_output=True, text=True, timeout=60
+        )
         assert p.returncode == 0, p.stderr
         assert "IO Connections for P4" in p.stdout
-        assert re.search(r"^01\s+48\s+IOPort\s+StepGen\s+0\s+Step\s+\(Out\)", p.stdout, re.M), p.stdout
+        assert re.search(
+            r"^01\s+48\s+IOPort\s+StepGen\s+0\s+Step\s+\(Out\)", p.stdout, re.M
+        ), p.stdout
     # a blank board and a missing socket: clear errors
     with vboard.VBoardProcess(tmp_path / "c.sock", "5i20") as vb:
-        r = subprocess.run([str(tool), f"sim:{vb.socket_path}"], capture_output=True, text=True, timeout=60)
+        r = subprocess.run(
+            [str(tool), f"sim:{vb.socket_path}"], capture_output=True, text=True, timeout=60
+        )
         assert r.returncode != 0 and "blank" in r.stderr
-    r = subprocess.run([str(tool), f"sim:{tmp_path}/none.sock"], capture_output=True, text=True, timeout=60)
+    r = subprocess.run(
+        [str(tool), f"sim:{tmp_path}/none.sock"], capture_output=True, text=True, timeout=60
+    )
     assert r.returncode != 0 and "cannot connect" in r.stderr
 
 
@@ -143,15 +159,19 @@ def bad_firmware(kind: str, fwdir: Path) -> str:
     "kind,message",
     [
         ("missing", r"firmware hm2/5i20/missing\.BIT not found"),
-        ("wrong-part", r"board has FPGA '2s200pq208', but the firmware in hm2/7i43/SV8\.BIT is for FPGA"),
+        (
+            "wrong-part",
+            r"board has FPGA '2s200pq208', but the firmware in hm2/7i43/SV8\.BIT is for FPGA",
+        ),
         ("truncated", r"bitfile|too short|truncated"),
         ("garbage", r"bitfile"),
         ("corrupt", r"refused the \d+-byte bitstream: .*"),
         ("other-board", r"refused the \d+-byte bitstream: .*5i25"),
     ],
 )
-def test_bad_firmware_board_stays_blank(tmp_path: Path, blank: vboard.VBoardProcess, kind: str,
-                                        message: str) -> None:
+def test_bad_firmware_board_stays_blank(
+    tmp_path: Path, blank: vboard.VBoardProcess, kind: str, message: str
+) -> None:
     sock = Path(blank.socket_path)
     env: dict[str, str] = {}
     if kind == "missing":
@@ -186,7 +206,9 @@ def test_bad_module_arguments(tmp_path: Path, blank: vboard.VBoardProcess) -> No
     assert f"virtual board at {sock} is a 5i20, but board=7i43 was given" in r.stdout + r.stderr
     r = halrun(tmp_path, load(tmp_path / "nothing.sock"))
     assert r.returncode != 0
-    assert "cannot connect" in r.stdout + r.stderr and "is bin/vboard running?" in r.stdout + r.stderr
+    assert (
+        "cannot connect" in r.stdout + r.stderr and "is bin/vboard running?" in r.stdout + r.stderr
+    )
     r = halrun(tmp_path, "loadrt hostmot2\nloadrt hm2_sim\n")
     assert r.returncode != 0 and "no board given" in r.stdout + r.stderr
 
@@ -224,9 +246,17 @@ def test_async_writes_real_board(tmp_path: Path) -> None:
         sock = Path(vb.socket_path)
         sg = f"{PFX}.stepgen.00"
         s = load(sock, extra="async_writes=1")
-        for k, val in [("steplen", 5000), ("stepspace", 5000), ("dirsetup", 20000), ("dirhold", 20000),
-                       ("position-scale", 1000), ("maxvel", 40), ("maxaccel", 2000), ("enable", 1),
-                       ("position-cmd", 0.05)]:
+        for k, val in [
+            ("steplen", 5000),
+            ("stepspace", 5000),
+            ("dirsetup", 20000),
+            ("dirhold", 20000),
+            ("position-scale", 1000),
+            ("maxvel", 40),
+            ("maxaccel", 2000),
+            ("enable", 1),
+            ("position-cmd", 0.05),
+        ]:
             s += f"setp {sg}.{k} {val}\n"
         s += "simrun 30ms\n"
         s += f"getp {sg}.position-fb\n"

@@ -11,6 +11,7 @@ at a few percent of real time."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -42,7 +43,7 @@ CLOCK_LOW_NS = 1e9 / 33_333_333  # one 5i20 ClockLow period
 
 
 @pytest.fixture
-def board(tmp_path: Path):  # type: ignore[no-untyped-def]
+def board(tmp_path: Path) -> Iterator[Path]:
     with vboard.VBoardProcess(tmp_path / "b.sock", "5i20", "SVST8_4") as vb:
         yield Path(vb.socket_path)
         assert vb.proc.poll() is None
@@ -93,8 +94,16 @@ def test_gpio_out_invert_opendrain_in(tmp_path: Path, board: Path) -> None:
 def stepgen_setup(board: Path, steplen: int = 5000, stepspace: int = 5000) -> str:
     sg = f"{PFX}.stepgen.00"
     s = load(board)
-    for k, val in [("steplen", steplen), ("stepspace", stepspace), ("dirsetup", 20000), ("dirhold", 20000),
-                   ("position-scale", 1000), ("maxvel", 40), ("maxaccel", 2000), ("enable", 1)]:
+    for k, val in [
+        ("steplen", steplen),
+        ("stepspace", stepspace),
+        ("dirsetup", 20000),
+        ("dirhold", 20000),
+        ("position-scale", 1000),
+        ("maxvel", 40),
+        ("maxaccel", 2000),
+        ("enable", 1),
+    ]:
         s += f"setp {sg}.{k} {val}\n"
     return s
 
@@ -190,19 +199,20 @@ def test_encoder_index(tmp_path: Path, board: Path) -> None:
 @pytest.mark.parametrize(
     "otype,value,duty0,duty1",
     [
-        (1, 0.25, 0.25, None),   # PWM/Dir: Out0 duty, Out1 = direction (low: positive)
+        (1, 0.25, 0.25, None),  # PWM/Dir: Out0 duty, Out1 = direction (low: positive)
         (1, -0.6, 0.6, None),
         # Up/Down: this firmware puts negative values on Out0 and positive
         # ones on Out1 (spec/hostmot2.md, "Up/down PWM mode in this VHDL")
         (2, 0.3, 0.0, 0.3),
         (2, -0.3, 0.3, 0.0),
-        (3, 0.4, 0.4, None),     # PDM: density on Out0
-        (4, 0.35, None, 0.35),   # Dir/PWM: Out0 = direction, Out1 = PWM
+        (3, 0.4, 0.4, None),  # PDM: density on Out0
+        (4, 0.35, None, 0.35),  # Dir/PWM: Out0 = direction, Out1 = PWM
         (4, -0.35, None, 0.35),
     ],
 )
-def test_pwmgen_duty(tmp_path: Path, board: Path, otype: int, value: float, duty0: float | None,
-                     duty1: float | None) -> None:
+def test_pwmgen_duty(
+    tmp_path: Path, board: Path, otype: int, value: float, duty0: float | None, duty1: float | None
+) -> None:
     p = f"{PFX}.pwmgen"
     s = load(board)
     s += f"setp {p}.pwm_frequency 20000\nsetp {p}.pdm_frequency 2000000\n"
@@ -235,14 +245,14 @@ def test_watchdog_bite_and_recovery(tmp_path: Path, board: Path) -> None:
     s += probe(board, "probe", "running", 0)
     s += f"delf {PFX}.write servo\n"  # the host stops writing (and petting)
     s += "simrun 3ms\n"
-    s += probe(board, "probe", "early", 0)   # ~3-4 ms since the last pet: not yet
+    s += probe(board, "probe", "early", 0)  # ~3-4 ms since the last pet: not yet
     s += tag("bit_early", f"{w}.has_bit")
     s += "simrun 4ms\n"
     s += probe(board, "probe", "bitten", 0)  # > 5 ms: outputs are inputs now
     s += tag("bit", f"{w}.has_bit")
     s += f"addf {PFX}.write servo\n"
     s += "simrun 2ms\n"
-    s += probe(board, "probe", "still", 0)   # writes alone do not re-arm it
+    s += probe(board, "probe", "still", 0)  # writes alone do not re-arm it
     s += f"setp {w}.has_bit 0\n"
     s += "simrun 2ms\n"
     s += probe(board, "probe", "restored", 0)
@@ -273,8 +283,14 @@ def test_simulated_clock_is_deterministic(tmp_path: Path) -> None:
             s += f"setp {sg}.control-type 1\nsetp {sg}.velocity-cmd 7.3\n"
             s += probe(sock, "quad", ENC0_A, ENC0_B, 12345.6)
             s += "simrun 7ms\n"
-            s += tag("v", f"{sg}.counts", f"{sg}.position-fb", f"{sg}.velocity-fb", f"{e}.count",
-                     f"{e}.velocity")
+            s += tag(
+                "v",
+                f"{sg}.counts",
+                f"{sg}.position-fb",
+                f"{sg}.velocity-fb",
+                f"{e}.count",
+                f"{e}.velocity",
+            )
             s += probe(sock, "probe", "p", f"{SG0_STEP},{ENC0_A}")
             out = run_ok(d, s)
             outs.append((values(out)["v"], values(out)["p"]))

@@ -195,8 +195,9 @@ def compare(got: dict[str, Any], want: dict[str, Any], where: str) -> None:
 
 @pytest.mark.parametrize("seed", [1, 0xC0FFEE, 987654321])
 def test_driver_maths_match_model(seed: int) -> None:
-    r = subprocess.run([str(DUMP), str(seed), "400"], capture_output=True, text=True,
-                       timeout=60, check=True)
+    r = subprocess.run(
+        [str(DUMP), str(seed), "400"], capture_output=True, text=True, timeout=60, check=True
+    )
     lines = [json.loads(x) for x in r.stdout.splitlines()]
     servo = [x for x in lines if x["drv"] == "servo"]
     step = [x for x in lines if x["drv"] == "step"]

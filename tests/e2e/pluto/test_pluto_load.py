@@ -96,7 +96,9 @@ def test_step_speedrange(tmp_path: Path) -> None:
 
 def test_hm2_7i43_bad_port(tmp_path: Path) -> None:
     assert (RTLIB / "hm2_7i43.so").exists(), "hm2_7i43.so not built (run `make build`)"
-    r = halrun(tmp_path, "loadrt hostmot2\nloadrt hm2_7i43 port=ppdev:/nonexistent/pp0\nshow comp\n")
+    r = halrun(
+        tmp_path, "loadrt hostmot2\nloadrt hm2_7i43 port=ppdev:/nonexistent/pp0\nshow comp\n"
+    )
     out = r.stdout + r.stderr
     assert "hm2_7i43: loading HostMot2 Mesa 7i43 driver version 0.3" in out
     assert (

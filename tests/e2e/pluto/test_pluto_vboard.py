@@ -27,7 +27,7 @@ pytestmark = pytest.mark.requires_build(
 )
 
 # Fixed pin numbering of the virtual Pluto-P (docs/vboard.md).
-OUT = 0            # OUT0..: pins 0..
+OUT = 0  # OUT0..: pins 0..
 SERVO_UP0, SERVO_DN0, SERVO_LED = 10, 11, 18
 STEP0, DIR0 = 14, 15
 IN0 = 23
@@ -92,7 +92,10 @@ def test_upload_configures_a_blank_board(tmp_path: Path, comp: str, fw: str) -> 
     [
         ("truncated", lambda good: good[:40]),
         ("corrupt", lambda good: good[:20] + bytes([good[20] ^ 0x55]) + good[21:]),
-        ("other firmware file", lambda good: (FIRMWARE / "hm2" / "5i20" / "SVST8_4.BIT").read_bytes()),
+        (
+            "other firmware file",
+            lambda good: (FIRMWARE / "hm2" / "5i20" / "SVST8_4.BIT").read_bytes(),
+        ),
         ("garbage", lambda good: bytes(range(200))),
     ],
 )
@@ -100,10 +103,16 @@ def test_bad_image_leaves_the_board_unconfigured(tmp_path: Path, what: str, make
     good = (FIRMWARE / "pluto_servo.rbf").read_bytes()
     (tmp_path / "bad.rbf").write_bytes(make(good))  # type: ignore[operator]
     with board(tmp_path) as b:
-        r = e2e.halrun(tmp_path, servo(b.socket_path, f"firmware={tmp_path / 'bad.rbf'}") + "show comp\n")
+        r = e2e.halrun(
+            tmp_path, servo(b.socket_path, f"firmware={tmp_path / 'bad.rbf'}") + "show comp\n"
+        )
         out = r.stdout + r.stderr
         assert "Failed to communicate with pluto-servo board after programming firmware." in out
-        assert "pluto-servo" not in out.split("Loaded HAL Components:")[-1] if "Loaded HAL" in out else True
+        assert (
+            "pluto-servo" not in out.split("Loaded HAL Components:")[-1]
+            if "Loaded HAL" in out
+            else True
+        )
         with b.client() as c:
             h = c.hello()
             assert h.state == 0 and h.firmware == "", what
@@ -165,7 +174,9 @@ def test_digital_outputs_and_inputs(tmp_path: Path) -> None:
         assert v["qa0"] == ["FALSE"]
 
 
-@pytest.mark.parametrize("value,pwmdir", [(0.25, 0), (-0.6, 0), (0.4, 1), (-0.75, 1), (0.0, 0), (1.0, 0)])
+@pytest.mark.parametrize(
+    "value,pwmdir", [(0.25, 0), (-0.6, 0), (0.4, 1), (-0.75, 1), (0.0, 0), (1.0, 0)]
+)
 def test_pwm_duty_on_the_pins(tmp_path: Path, value: float, pwmdir: int) -> None:
     with board(tmp_path) as b:
         s = b.socket_path
@@ -204,8 +215,12 @@ def test_encoder_counts_and_index(tmp_path: Path) -> None:
             "setp pluto-servo.encoder.0.scale 4\n"
             + e2e.probe(s, "quad", QA0, QB0, 20000, QZ0, 100)
             + "simrun 10ms\n"
-            + e2e.tag("a", "pluto-servo.encoder.0.count", "pluto-servo.encoder.0.position",
-                      "pluto-servo.encoder.0.velocity")
+            + e2e.tag(
+                "a",
+                "pluto-servo.encoder.0.count",
+                "pluto-servo.encoder.0.position",
+                "pluto-servo.encoder.0.velocity",
+            )
             + "setp pluto-servo.encoder.0.index-enable 1\n"
             + "simrun 10ms\n"
             + e2e.tag("b", "pluto-servo.encoder.0.index-enable", "pluto-servo.encoder.0.count")
