@@ -3,6 +3,7 @@
 sim/verilator/src/fwimage.h for board "pluto", whose design-id field is the
 CRC-32 of the firmware name (the board checks it, see pluto_board.cpp).
 Usage: make_rbf.py FIRMWARE OUT"""
+
 from __future__ import annotations
 
 import sys
