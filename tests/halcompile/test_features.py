@@ -440,3 +440,83 @@ def test_preprocess_is_deterministic(tmp_path: Path, comp: str) -> None:
     again = (tmp_path / "again.c").read_text()
     assert first.replace(f'"{comp}.c"', "X") == again.replace('"again.c"', "X")
     assert f'#line 2 "{comp}.comp"' not in first  # the C part starts after ";;"
+
+
+API = r"""
+component api "the LinuxCNC component API .comp authors include";
+pin out float pi;
+pin out u32 q;
+pin out u32 rem;
+pin out s32 len;
+pin out bit digit;
+pin out s64 now;
+pin out s32 trunc_err;
+variable char *buf;
+option extra_setup;
+option extra_cleanup;
+function _;
+license "GPL";
+;;
+#include <rtapi_math.h>
+#include <rtapi_math64.h>
+#include <rtapi_string.h>
+#include <rtapi_errno.h>
+#include <rtapi_ctype.h>
+#include <rtapi_stdint.h>
+#include <rtapi_bool.h>
+#include <rtapi_slab.h>
+#include <rtapi_app.h>
+
+static char *bufs[8];
+
+EXTRA_SETUP() {
+    buf = rtapi_kzalloc(16, RTAPI_GFP_KERNEL);
+    if (buf == NULL)
+        return -ENOMEM;
+    bufs[extra_arg % 8] = buf;
+    rtapi_snprintf(buf, 16, "%s!", prefix);
+    return 0;
+}
+
+EXTRA_CLEANUP() {
+    for (int i = 0; i < 8; i++)
+        rtapi_kfree(bufs[i]);
+}
+
+FUNCTION(_) {
+    char small[4];
+    rtapi_u32 r;
+    pi = M_PI;
+    q = (rtapi_u32)rtapi_div_u64_rem(10000000007ULL, 10u, &r);
+    rem = r;
+    len = (rtapi_s32)strlen(buf);
+    digit = isdigit((unsigned char)buf[4]) != 0;
+    now = rtapi_get_time();
+    trunc_err = rtapi_strxcpy(small, "toolong");
+    if (trunc_err != -E2BIG)
+        rtapi_print_msg(RTAPI_MSG_ERR, "api: strxcpy did not report truncation\n");
+}
+"""
+
+
+def test_linuxcnc_api_headers(tmp_path: Path) -> None:
+    (tmp_path / "api.comp").write_text(API)
+    compile_ok(Path("api.comp"), tmp_path)
+    hal = """
+loadrt api
+loadrt threads name1=t period1=1000000
+addf api.0 t
+simrun 3ms
+show pin api
+"""
+    p = halrun(hal, tmp_path, hal_env([tmp_path]), "-S")
+    assert p.returncode == 0, p.stderr
+    v = pins(p.stdout)
+    assert float(v["api.0.pi"][2]) == pytest.approx(3.1415927)
+    assert int(v["api.0.q"][2], 16) == 1000000000 % 2**32  # 10000000007 // 10, as u32
+    assert int(v["api.0.rem"][2], 16) == 7
+    assert v["api.0.len"][2] == "6"  # "api.0!"
+    assert v["api.0.digit"][2] == "TRUE"  # buf[4] is '0'
+    assert int(v["api.0.now"][2]) >= 3_000_000  # virtual time after 3 ms
+    assert v["api.0.trunc-err"][2] == "-7"  # -E2BIG
+    assert "did not report" not in p.stderr

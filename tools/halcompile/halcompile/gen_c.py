@@ -107,6 +107,16 @@ class _Gen:
             '#include "rtapi_string.h"',
             '#include "hal.h"',
             '#include "halcomp.h"',
+            # The headers .comp authors include, here before the accessor
+            # macros (a pin named `rem` or `size` would otherwise break their
+            # declarations); their include guards make the author's own
+            # #include later a no-op.
+            '#include "rtapi_math.h"',
+            '#include "rtapi_math64.h"',
+            '#include "rtapi_ctype.h"',
+            '#include "rtapi_stdint.h"',
+            '#include "rtapi_bool.h"',
+            '#include "rtapi_slab.h"',
         )
         if c.userspace:
             self.w("#include <stdio.h>", "#include <stdlib.h>", "#include <unistd.h>")
