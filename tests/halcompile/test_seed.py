@@ -199,3 +199,20 @@ show pin
     assert v["rtexample2.out"] == ("s32", "OUT", "42")
     assert v["usrexample.0.enable"] == ("bit", "IN", "TRUE")
     assert int(v["usrexample.0.out"][2]) > 0
+
+
+def test_out8_count_function_and_io(built: Path, tmp_path: Path) -> None:
+    """The seed's out8 compiles unchanged (<asm/io.h>, rtapi_request_region,
+    option constructable); with no io= it loads with no instances; with an
+    address it either gets the port (root/CAP_SYS_RAWIO) and makes one
+    instance, or EXTRA_SETUP fails the load with -EBUSY leaving nothing."""
+    p = halrun("loadrt out8\nshow comp out8\nshow pin\n", tmp_path, hal_env([built]))
+    assert p.returncode == 0, p.stderr
+    assert re.search(r"RT +out8 +ready", p.stdout)
+    assert "out8." not in p.stdout.split("Component Pins:")[1]
+    p = halrun("loadrt out8 io=0x378\nshow param out8\n", tmp_path, hal_env([built]))
+    if p.returncode == 0:
+        v = pins(p.stdout)
+        assert int(v["out8.0.ioaddr"][2], 16) == 0x378
+    else:
+        assert "out8: rtapi_app_main: Device or resource busy (-16)" in p.stderr

@@ -117,6 +117,7 @@ class _Gen:
             '#include "rtapi_stdint.h"',
             '#include "rtapi_bool.h"',
             '#include "rtapi_slab.h"',
+            '#include "rtapi_io.h"',
         )
         if c.userspace:
             self.w("#include <stdio.h>", "#include <stdlib.h>", "#include <unistd.h>")
