@@ -185,3 +185,46 @@ def test_install_python_userspace(tmp_path: Path) -> None:
     p = halrun(hal, tmp_path, env)
     assert p.returncode == 0, p.stderr
     assert pins(p.stdout)["passthrough.out"] == ("float", "OUT", "3.14")
+
+
+USER_C = r"""
+/* SPDX-License-Identifier: GPL-2.0-or-later */
+#include <signal.h>
+#include <unistd.h>
+#include "hal.h"
+
+static volatile sig_atomic_t done;
+static void stop(int sig) { (void)sig; done = 1; }
+
+int main(void)
+{
+    hal_s32_t **p;
+    int id = hal_init("userc");
+    if (id < 0)
+        return 1;
+    p = hal_malloc(sizeof(*p));
+    if (p == NULL || hal_pin_s32_new("userc.out", HAL_OUT, p, id) < 0) {
+        hal_exit(id);
+        return 1;
+    }
+    **p = 11;
+    signal(SIGTERM, stop);
+    hal_ready(id);
+    while (!done)
+        usleep(1000);
+    hal_exit(id);
+    return 0;
+}
+"""
+
+
+def test_compile_userspace_c(tmp_path: Path) -> None:
+    from hcomp_util import hal_env, halrun, pins
+
+    (tmp_path / "userc.c").write_text(USER_C)
+    p = halcompile("--compile", "--userspace", "userc.c", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "userc").is_file() and not (tmp_path / "userc.so").exists()
+    p = halrun(f"loadusr -Wn userc {tmp_path / 'userc'}\nshow pin\n", tmp_path, hal_env())
+    assert p.returncode == 0, p.stderr
+    assert pins(p.stdout)["userc.out"] == ("s32", "OUT", "11")
