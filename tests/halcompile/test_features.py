@@ -172,7 +172,7 @@ def test_options_singleton_setup_cleanup_data_modparam(tmp_path: Path) -> None:
     (tmp_path / "opts_types.h").write_text(
         "typedef int opts_count_t;\ntypedef struct { int calls; } opts_data;\n"
     )
-    compile_ok(Path("opts.comp"), tmp_path, "--extra-compile-args=-I.")
+    compile_ok(Path("opts.comp"), tmp_path)  # opts_types.h found next to opts.comp
     hal = """
 loadrt opts level=40 label=abcdef
 loadrt threads name1=t period1=1000000

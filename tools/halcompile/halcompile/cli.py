@@ -179,6 +179,8 @@ def _compile_install(args: argparse.Namespace, f: Path, is_c: bool) -> None:
             name, userspace = comp.name, comp.userspace
             csrc = tmp / f"{name}.c"
             csrc.write_text(generate(comp, str(f.resolve()), str(csrc)))
+            # `include "x.h";` and #include "x.h" find headers next to the .comp
+            extra_c += [f"-I{f.resolve().parent}"]
             extra_c += shlex.split(comp.options.get("extra_compile_args", ""))
             extra_l += shlex.split(comp.options.get("extra_link_args", ""))
         fname = name if userspace else f"{name}.so"
