@@ -376,10 +376,12 @@ def test_compute_velocity(tmp_path: Path) -> None:
 def test_softstart(tmp_path: Path) -> None:
     """limit2 keeps the slope within maxv, limit3 within maxv and maxa,
     lowpass approaches the square wave exponentially (gain .01 a period);
-    6 s cover the square wave's flip at 5 s.  Sampled every 20 ms."""
+    7 s cover the square wave's flip at 5 s and limit3's 1.2 s way from -1
+    to +1 (0.2 s accelerating, 0.8 s at maxv, 0.2 s braking).  Sampled every
+    20 ms."""
     text, _ = example("softstart", tmp_path)
     script = text + "loadusr -w echo @@rows\n"
-    n, step = 300, 0.02
+    n, step = 350, 0.02
     for _ in range(n):
         script += "simrun 20ms\ngets lowpass\ngets limit2\ngets limit3\ngets square\n"
     flat = [float(x) for x in values(run(tmp_path, script))["rows"]]
@@ -400,6 +402,8 @@ def test_softstart(tmp_path: Path) -> None:
         else:
             model = lp[k]
     assert l2[-1] == pytest.approx(1) and l3[-1] == pytest.approx(1, abs=1e-6)
+    # limit3 at 6.0 s: 1.0 s after the flip, 0.2 short of the way
+    assert l3[299] == pytest.approx(0.8, abs=0.01)
 
 
 def test_spindle_scale(tmp_path: Path) -> None:
