@@ -322,7 +322,7 @@ class _Gen:
             f"static int __comp_export(char *prefix {UNUSED}, long extra_arg {UNUSED}, "
             f"long __comp_pers {UNUSED})",
             "{",
-            f"    int __comp_sizes[{n}] = {{0}};",
+            f"    int __comp_sizes[{n}] {UNUSED} = {{0}};",
             "    int __comp_r = 0;",
             f"    struct __comp_state *__comp_inst = halcomp_alloc({c_string(c.name)}, prefix, "
             f"{size});",
