@@ -228,3 +228,16 @@ def test_compile_userspace_c(tmp_path: Path) -> None:
     p = halrun(f"loadusr -Wn userc {tmp_path / 'userc'}\nshow pin\n", tmp_path, hal_env())
     assert p.returncode == 0, p.stderr
     assert pins(p.stdout)["userc.out"] == ("s32", "OUT", "11")
+
+
+def test_document_groff_lists(tmp_path: Path) -> None:
+    """The seed's logic.comp description (.IP \\(bu items) becomes a list."""
+    shutil.copy(COMPS / "logic.comp", tmp_path)
+    assert halcompile("--document", "logic.comp", cwd=tmp_path).returncode == 0
+    md = (tmp_path / "logic.md").read_text()
+    assert (
+        "by adding:\n\n* The number of input pins, usually from 2 to 16\n"
+        "* 256 (0x100)  if the 'and' output is desired\n"
+        "* 512 (0x200)  if the 'or' output is desired\n"
+        "* 1024 (0x400)  if the 'xor' (exclusive or) output is desired\n\n## FUNCTIONS"
+    ) in md

@@ -19,10 +19,12 @@ _FONT = re.compile(r"\\f([BIRP])(.*?)(?=\\f[BIRP]|$)", re.S)
 
 def groff_to_md(text: str) -> str:
     out: list[str] = []
+    in_list = False  # inside an .IP/.TP item: text continues it, indented
     for line in text.strip("\n").split("\n"):
         s = line.rstrip()
         if s.startswith((".PP", ".LP", ".P ", ".sp")) or s in (".P", ".br"):
             out.append("")
+            in_list = False
             continue
         m = re.match(r"\.(B|I|BI|BR|IR|RB|RI|IB)\s+(.*)", s)
         if m:
@@ -32,16 +34,22 @@ def groff_to_md(text: str) -> str:
         if s.startswith(".IP") or s.startswith(".TP"):
             arg = s[3:].strip()
             bullet = arg.split()[0] if arg else ""
-            out.append("")
+            if not in_list:
+                out.append("")
             out.append("* " if bullet in ("", r"\(bu", "\\\\(bu") else f"* {bullet} ")
+            in_list = True
             continue
         if s.startswith("."):
             out.append(s)
             continue
-        out.append(_fonts(s))
-    text = "\n".join(out)
-    text = re.sub(r"\n\* \n", "\n* ", text)
-    return re.sub(r"\n{3,}", "\n\n", text).strip()
+        text_line = _fonts(s)
+        if in_list and out and out[-1].startswith("* ") and out[-1].endswith(" "):
+            out[-1] += text_line
+        elif in_list:
+            out.append("  " + text_line)
+        else:
+            out.append(text_line)
+    return re.sub(r"\n{3,}", "\n\n", "\n".join(out)).strip()
 
 
 def _fonts(s: str) -> str:
