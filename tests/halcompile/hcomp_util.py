@@ -65,6 +65,24 @@ def hal_env(rtlib: list[Path] | None = None, home: Path | None = None) -> dict[s
     return env
 
 
+def python_sanitizer_env(env: dict[str, str]) -> dict[str, str]:
+    """For a Python component under a sanitized build (make test SANITIZE=1):
+    _hal.so links the ASan runtime, which the uninstrumented interpreter
+    needs preloaded; Python's own allocations at exit are not ours."""
+    ext = next((BUILD / "lib" / "python").glob("_hal*.so"), None)
+    if ext is None:
+        return env
+    ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True).stdout
+    libs = [
+        line.split("=>")[1].split()[0]
+        for line in ldd.splitlines()
+        if "=>" in line and ("libasan" in line or "libubsan" in line)
+    ]
+    if libs:
+        env = dict(env, LD_PRELOAD=" ".join(libs), ASAN_OPTIONS="detect_leaks=0")
+    return env
+
+
 def halrun(
     hal_text: str, cwd: Path, env: dict[str, str], *args: str
 ) -> subprocess.CompletedProcess[str]:

@@ -170,7 +170,7 @@ except KeyboardInterrupt:
 
 def test_install_python_userspace(tmp_path: Path) -> None:
     """The seed's passthrough Python component installed as a program."""
-    from hcomp_util import hal_env, halrun, pins
+    from hcomp_util import hal_env, halrun, pins, python_sanitizer_env
 
     (tmp_path / "passthrough.py").write_text(PASSTHROUGH)
     env = hal_env()
@@ -182,7 +182,7 @@ def test_install_python_userspace(tmp_path: Path) -> None:
     prog = tmp_path / "bin" / "passthrough"
     assert prog.stat().st_mode & 0o111
     hal = f"loadusr -Wn passthrough {prog}\nsetp passthrough.in 3.14\nloadusr -w sleep 0.2\nshow pin\n"
-    p = halrun(hal, tmp_path, env)
+    p = halrun(hal, tmp_path, python_sanitizer_env(env))
     assert p.returncode == 0, p.stderr
     assert pins(p.stdout)["passthrough.out"] == ("float", "OUT", "3.14")
 
