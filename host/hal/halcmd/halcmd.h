@@ -38,8 +38,11 @@ void halcmd_output(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 int halcmd_dispatch(int argc, char **argv);
 /* Execute one raw line (preprocess + tokenize + dispatch). */
 int halcmd_run_line(const char *line);
-/* Run a file of commands (source, -f). */
+/* Run the commands of an open file (stdin, -f). */
 int halcmd_run_file(const char *path, FILE *f);
+/* Open and run a file (-f FILE, source): refuses directories and `source`
+ * loops, and nesting deeper than 16 files. */
+int halcmd_source(const char *path, int top);
 
 /* show/list/save/status (halcmd_show.c) */
 int do_show_cmd(int argc, char **argv);

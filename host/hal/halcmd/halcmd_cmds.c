@@ -1091,18 +1091,7 @@ static int do_unlock_cmd(int argc, char **argv)
 static int do_source_cmd(int argc, char **argv)
 {
     (void)argc;
-    FILE *f = fopen(argv[1], "r");
-    if (f == NULL) {
-        halcmd_error("Could not open hal file '%s': %s\n", argv[1], strerror(errno));
-        return -errno;
-    }
-    const char *saved_name = hc.filename;
-    int saved_line = hc.linenum;
-    int rc = halcmd_run_file(argv[1], f);
-    fclose(f);
-    hc.filename = saved_name;
-    hc.linenum = saved_line;
-    return rc;
+    return halcmd_source(argv[1], 0);
 }
 
 static int do_echo_cmd(int argc, char **argv)
@@ -1331,44 +1320,23 @@ int halcmd_run_file(const char *path, FILE *f)
 {
     hc.filename = path;
     hc.linenum = 0;
-    char *line = NULL;
-    size_t cap = 0;
     char *logical = malloc(HALCMD_MAX_LINE);
     if (logical == NULL)
         return -ENOMEM;
     int result = 0;
     while (!hc.done) {
-        size_t used = 0;
-        int startline = 0;
-        ssize_t n;
-        int got = 0;
-        logical[0] = '\0';
-        /* Join backslash-continued lines into one logical line. */
-        while ((n = getline(&line, &cap, f)) >= 0) {
-            hc.linenum++;
-            if (!got)
-                startline = hc.linenum;
-            got = 1;
-            while (n > 0 && (line[n - 1] == '\n' || line[n - 1] == '\r'))
-                line[--n] = '\0';
-            int cont = n > 0 && line[n - 1] == '\\';
-            if (cont)
-                line[--n] = '\0';
-            if (used + (size_t)n + 2 < HALCMD_MAX_LINE) {
-                memcpy(logical + used, line, (size_t)n);
-                used += (size_t)n;
-                logical[used] = '\0';
-            }
-            if (!cont)
-                break;
-            logical[used++] = ' ';
-            logical[used] = '\0';
-        }
-        if (!got)
-            break;
+        char err[128];
         /* Errors name the last physical line of a continued line, as
          * LinuxCNC does. */
-        (void)startline;
+        int got = halcmd_read_line(f, logical, HALCMD_MAX_LINE, &hc.linenum, err, sizeof(err));
+        if (got == 0)
+            break;
+        if (got < 0) {
+            /* Not a HAL file (or unreadable): stop even with -k. */
+            halcmd_error("%s\n", err);
+            result = -EINVAL;
+            break;
+        }
         int rc = halcmd_run_line(logical);
         if (rc != 0) {
             result = rc;
@@ -1376,7 +1344,80 @@ int halcmd_run_file(const char *path, FILE *f)
                 break;
         }
     }
-    free(line);
     free(logical);
     return result;
+}
+
+/* The files being read, outermost first, to refuse a `source` loop. */
+#define SOURCE_MAX_DEPTH 16
+static struct {
+    const char *name;
+    dev_t dev;
+    ino_t ino;
+} source_stack[SOURCE_MAX_DEPTH];
+static int source_depth;
+
+static void source_chain(char *buf, size_t len, const char *last)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < source_depth && n < len; i++)
+        n += (size_t)snprintf(buf + n, len - n, "%s -> ", source_stack[i].name);
+    if (n < len)
+        snprintf(buf + n, len - n, "%s", last);
+}
+
+static void open_error(int top, const char *path, int e)
+{
+    if (top) {
+        /* -f FILE: LinuxCNC's message has no file:line prefix */
+        if (!hc.very_quiet)
+            fprintf(stderr, "Could not open hal file '%s': %s\n", path, strerror(e));
+    } else {
+        halcmd_error("Could not open hal file '%s': %s\n", path, strerror(e));
+    }
+}
+
+int halcmd_source(const char *path, int top)
+{
+    FILE *f = fopen(path, "r");
+    if (f == NULL) {
+        int e = errno;
+        open_error(top, path, e);
+        return -e;
+    }
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || S_ISDIR(st.st_mode)) {
+        int e = S_ISDIR(st.st_mode) ? EISDIR : errno;
+        fclose(f);
+        open_error(top, path, e);
+        return -e;
+    }
+    char chain[1024];
+    for (int i = 0; i < source_depth; i++) {
+        if (source_stack[i].dev == st.st_dev && source_stack[i].ino == st.st_ino) {
+            fclose(f);
+            source_chain(chain, sizeof(chain), path);
+            halcmd_error("source: '%s' is already being read (a loop): %s\n", path, chain);
+            return -ELOOP;
+        }
+    }
+    if (source_depth >= SOURCE_MAX_DEPTH) {
+        fclose(f);
+        source_chain(chain, sizeof(chain), path);
+        halcmd_error("source: files nested more than %d deep: %s\n", SOURCE_MAX_DEPTH, chain);
+        return -ELOOP;
+    }
+    source_stack[source_depth].name = path;
+    source_stack[source_depth].dev = st.st_dev;
+    source_stack[source_depth].ino = st.st_ino;
+    source_depth++;
+    const char *saved_name = hc.filename;
+    int saved_line = hc.linenum;
+    int rc = halcmd_run_file(path, f);
+    hc.filename = saved_name;
+    hc.linenum = saved_line;
+    source_depth--;
+    fclose(f);
+    return rc;
 }

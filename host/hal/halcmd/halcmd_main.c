@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #ifdef HAVE_READLINE
@@ -19,6 +20,7 @@
 #endif
 
 #include "halcmd.h"
+#include "halcmd_parse.h"
 #include "rtapi_proto.h"
 
 static void usage(void)
@@ -143,14 +145,21 @@ static int interactive(void)
             result = rc;
     }
 #else
-    char *line = NULL;
-    size_t cap = 0;
+    char *line = malloc(HALCMD_MAX_LINE);
+    if (line == NULL)
+        return -ENOMEM;
     while (!hc.done) {
         printf("halcmd: ");
         fflush(stdout);
-        if (getline(&line, &cap, stdin) < 0)
+        char err[128];
+        int got = halcmd_read_line(stdin, line, HALCMD_MAX_LINE, &hc.linenum, err, sizeof(err));
+        if (got < 0) {
+            halcmd_error("%s\n", err);
+            result = -EINVAL;
             break;
-        hc.linenum++;
+        }
+        if (got == 0)
+            break;
         int rc = halcmd_run_line(line);
         if (rc)
             result = rc;
@@ -281,9 +290,16 @@ int main(int argc, char **argv)
         usage();
         return 0;
     }
-    if (hc.ini != NULL && access(hc.ini, R_OK) != 0) {
-        fprintf(stderr, "halcmd: cannot read INI file '%s': %s\n", hc.ini, strerror(errno));
-        return 1;
+    if (hc.ini != NULL) {
+        struct stat st;
+        if (access(hc.ini, R_OK) != 0 || stat(hc.ini, &st) != 0) {
+            fprintf(stderr, "halcmd: cannot read INI file '%s': %s\n", hc.ini, strerror(errno));
+            return 1;
+        }
+        if (!S_ISREG(st.st_mode)) {
+            fprintf(stderr, "halcmd: INI file '%s' is not a regular file\n", hc.ini);
+            return 1;
+        }
     }
     if (hal_priv_attach() != 0)
         return 1;
@@ -309,15 +325,7 @@ int main(int argc, char **argv)
     int rc = 0;
     if (use_file) {
         if (i < argc) {
-            const char *path = argv[i];
-            FILE *f = fopen(path, "r");
-            if (f == NULL) {
-                fprintf(stderr, "Could not open hal file '%s'\n", path);
-                rc = -ENOENT;
-            } else {
-                rc = halcmd_run_file(path, f);
-                fclose(f);
-            }
+            rc = halcmd_source(argv[i], 1);
         } else if (isatty(0)) {
             rc = interactive();
         } else {

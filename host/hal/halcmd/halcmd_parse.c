@@ -1,13 +1,17 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
- * halcmd_parse.c - comments, variable substitution and tokenizing of one
- * halcmd line (see halcmd_parse.h).
+ * halcmd_parse.c - reading, comments, variable substitution and tokenizing
+ * of halcmd lines (see halcmd_parse.h).  Every buffer has a fixed bound, so
+ * a hostile file (no newline, endless continuations, binary data) ends in
+ * an error instead of unbounded growth.
  */
 #define _GNU_SOURCE
 #include <ctype.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "halcmd_parse.h"
 
@@ -16,6 +20,66 @@
         if (err != NULL && errlen > 0)          \
             snprintf(err, errlen, __VA_ARGS__); \
     } while (0)
+
+/* ---- logical lines ---------------------------------------------------------- */
+
+int halcmd_read_line(FILE *f, char *buf, size_t buflen, int *linenum, char *err, size_t errlen)
+{
+    size_t n = 0;
+    int got = 0; /* read at least one byte (or line end) */
+    if (buflen < 2) {
+        SETERR("line buffer too small");
+        return -1;
+    }
+    buf[0] = '\0';
+    for (;;) {
+        int c = getc(f);
+        if (c == EOF) {
+            if (ferror(f)) {
+                SETERR("read error: %s", strerror(errno ? errno : EIO));
+                return -1;
+            }
+            if (got)
+                (*linenum)++;
+            break;
+        }
+        got = 1;
+        if (c == '\n') {
+            (*linenum)++;
+            if (n > 0 && buf[n - 1] == '\r')
+                buf[--n] = '\0';
+            if (n > 0 && buf[n - 1] == '\\') {
+                /* continued: drop the backslash, join with nothing */
+                buf[--n] = '\0';
+                got = 0;
+                continue;
+            }
+            return 1;
+        }
+        if (c == '\0') {
+            (*linenum)++;
+            SETERR("line contains a NUL byte (not a text file?)");
+            return -1;
+        }
+        if (n + 1 >= buflen) {
+            (*linenum)++;
+            SETERR("line too long (more than %zu characters)", buflen - 1);
+            return -1;
+        }
+        buf[n++] = (char)c;
+        buf[n] = '\0';
+    }
+    /* End of file: a last line without newline still counts; a trailing
+     * backslash continues into nothing. */
+    if (n > 0 && buf[n - 1] == '\r')
+        buf[--n] = '\0';
+    int joined = n > 0 && buf[n - 1] == '\\';
+    if (joined)
+        buf[--n] = '\0';
+    return (got || n > 0 || joined) ? 1 : 0;
+}
+
+/* ---- substitution ------------------------------------------------------------- */
 
 static int put(char *out, size_t outlen, size_t *n, const char *s, size_t len)
 {
@@ -27,97 +91,147 @@ static int put(char *out, size_t outlen, size_t *n, const char *s, size_t len)
     return 0;
 }
 
+static int name_char(char c)
+{
+    return isalnum((unsigned char)c) || c == '_' || c == '-' || c == '.';
+}
+
+/* Copy [start, end) into a bounded name buffer. */
+static int take_name(char *dst, size_t dstlen, const char *start, const char *end)
+{
+    size_t len = (size_t)(end - start);
+    if (len >= dstlen)
+        return -1;
+    memcpy(dst, start, len);
+    dst[len] = '\0';
+    return 0;
+}
+
+/* $NAME or $(NAME) at p (p[0] == '$'); *endp is set past it. */
+static int subst_env(const char *p, const char **endp, char *out, size_t outlen, size_t *n,
+                     char *err, size_t errlen)
+{
+    const char *start = p + 1, *end;
+    int paren = *start == '(';
+    if (paren) {
+        start++;
+        end = strchr(start, ')');
+        if (end == NULL) {
+            SETERR("Missing close parenthesis.");
+            return -1;
+        }
+    } else {
+        for (end = start; name_char(*end); end++)
+            ;
+    }
+    if (end == start) {
+        SETERR("Empty variable name.");
+        return -1;
+    }
+    char name[256];
+    if (take_name(name, sizeof(name), start, end) != 0) {
+        SETERR("Variable name too long.");
+        return -1;
+    }
+    const char *val = getenv(name);
+    if (val == NULL) {
+        SETERR("Environment variable '%s' not found.", name);
+        return -1;
+    }
+    if (put(out, outlen, n, val, strlen(val)) != 0) {
+        SETERR("line too long after substitution (more than %zu characters)", outlen - 1);
+        return -1;
+    }
+    *endp = end + paren;
+    return 0;
+}
+
+/* [SECTION]KEY or [SECTION](KEY) at p (p[0] == '['). */
+static int subst_ini(const char *p, const char **endp, char *out, size_t outlen, size_t *n,
+                     halcmd_ini_lookup_fn ini, void *ini_ctx, char *err, size_t errlen)
+{
+    const char *close = strchr(p + 1, ']');
+    if (close == NULL) {
+        SETERR("Missing close square bracket.");
+        return -1;
+    }
+    const char *kstart = close + 1, *kend;
+    int paren = *kstart == '(';
+    if (paren) {
+        kstart++;
+        kend = strchr(kstart, ')');
+        if (kend == NULL) {
+            SETERR("Missing close parenthesis.");
+            return -1;
+        }
+    } else {
+        for (kend = kstart; name_char(*kend); kend++)
+            ;
+    }
+    if (kend == kstart) {
+        SETERR("Empty variable name.");
+        return -1;
+    }
+    char sec[256], key[256];
+    if (take_name(sec, sizeof(sec), p + 1, close) != 0 ||
+        take_name(key, sizeof(key), kstart, kend) != 0) {
+        SETERR("Variable name too long.");
+        return -1;
+    }
+    char *val = ini != NULL ? ini(sec, key, ini_ctx) : NULL;
+    if (val == NULL) {
+        SETERR("Ini variable '[%s]%s' not found.", sec, key);
+        return -1;
+    }
+    int rc = put(out, outlen, n, val, strlen(val));
+    free(val);
+    if (rc != 0) {
+        SETERR("line too long after substitution (more than %zu characters)", outlen - 1);
+        return -1;
+    }
+    *endp = kend + paren;
+    return 0;
+}
+
 int halcmd_preprocess(const char *line, char *out, size_t outlen, halcmd_ini_lookup_fn ini,
                       void *ini_ctx, char *err, size_t errlen)
 {
     size_t n = 0;
-    if (outlen == 0)
+    char quote = 0;
+    if (outlen == 0) {
+        SETERR("no room for the line");
         return -1;
+    }
     out[0] = '\0';
     for (const char *p = line; *p;) {
-        if (*p == '#' || *p == '\n' || *p == '\r')
+        if (quote == 0 && (*p == '#' || *p == '\n' || *p == '\r'))
             break;
         if (*p == '$') {
-            const char *start = p + 1, *end;
-            int paren = 0;
-            if (*start == '(') {
-                paren = 1;
-                start++;
-                end = strchr(start, ')');
-                if (end == NULL) {
-                    SETERR("missing ')' after '$('");
-                    return -1;
-                }
-            } else {
-                end = start;
-                while (isalnum((unsigned char)*end) || *end == '_')
-                    end++;
-            }
-            if (end == start) {
-                if (put(out, outlen, &n, p, 1))
-                    goto toolong;
-                p++;
-                continue;
-            }
-            char name[256];
-            size_t len = (size_t)(end - start);
-            if (len >= sizeof(name)) {
-                SETERR("variable name too long");
+            if (subst_env(p, &p, out, outlen, &n, err, errlen) != 0)
                 return -1;
-            }
-            memcpy(name, start, len);
-            name[len] = '\0';
-            const char *val = getenv(name);
-            if (val == NULL) {
-                SETERR("Environment variable '%s' not set", name);
-                return -1;
-            }
-            if (put(out, outlen, &n, val, strlen(val)))
-                goto toolong;
-            p = end + paren;
             continue;
         }
         if (*p == '[') {
-            const char *close = strchr(p + 1, ']');
-            if (close != NULL && close > p + 1) {
-                const char *kstart = close + 1, *kend = kstart;
-                while (*kend && (isalnum((unsigned char)*kend) || *kend == '_' || *kend == '-' ||
-                                 *kend == '.'))
-                    kend++;
-                if (kend > kstart) {
-                    char sec[256], key[256];
-                    size_t sl = (size_t)(close - p - 1), kl = (size_t)(kend - kstart);
-                    if (sl >= sizeof(sec) || kl >= sizeof(key)) {
-                        SETERR("INI reference too long");
-                        return -1;
-                    }
-                    memcpy(sec, p + 1, sl);
-                    sec[sl] = '\0';
-                    memcpy(key, kstart, kl);
-                    key[kl] = '\0';
-                    char *val = ini ? ini(sec, key, ini_ctx) : NULL;
-                    if (val == NULL) {
-                        SETERR("Ini variable '[%s]%s' not found.", sec, key);
-                        return -1;
-                    }
-                    int rc = put(out, outlen, &n, val, strlen(val));
-                    free(val);
-                    if (rc)
-                        goto toolong;
-                    p = kend;
-                    continue;
-                }
-            }
+            if (subst_ini(p, &p, out, outlen, &n, ini, ini_ctx, err, errlen) != 0)
+                return -1;
+            continue;
         }
-        if (put(out, outlen, &n, p, 1))
-            goto toolong;
+        if (*p == '"' || *p == '\'') {
+            if (quote == 0)
+                quote = *p;
+            else if (quote == *p)
+                quote = 0;
+        }
+        if (put(out, outlen, &n, p, 1) != 0) {
+            SETERR("line too long (more than %zu characters)", outlen - 1);
+            return -1;
+        }
         p++;
     }
     return 0;
-toolong:
-    SETERR("line too long");
-    return -1;
 }
+
+/* ---- tokens ------------------------------------------------------------------------ */
 
 int halcmd_tokenize(char *line, char **tokens, int max, char *err, size_t errlen)
 {
@@ -133,13 +247,15 @@ int halcmd_tokenize(char *line, char **tokens, int max, char *err, size_t errlen
             return -1;
         }
         tokens[n++] = p;
-        int inq = 0;
-        while (*p && (inq || (*p != ' ' && *p != '\t'))) {
-            if (*p == '"')
-                inq = !inq;
+        char quote = 0;
+        while (*p && (quote || (*p != ' ' && *p != '\t'))) {
+            if (quote == 0 && (*p == '"' || *p == '\''))
+                quote = *p;
+            else if (quote == *p)
+                quote = 0;
             p++;
         }
-        if (inq) {
+        if (quote) {
             SETERR("unterminated quoted string");
             return -1;
         }
@@ -148,6 +264,8 @@ int halcmd_tokenize(char *line, char **tokens, int max, char *err, size_t errlen
     }
     return n;
 }
+
+/* ---- INI files ------------------------------------------------------------------- */
 
 static char *trim(char *s)
 {
@@ -164,16 +282,22 @@ char *halcmd_ini_get(const char *path, const char *section, const char *key)
     FILE *f = fopen(path, "r");
     if (f == NULL)
         return NULL;
-    char buf[4096];
-    int insec = 0;
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        fclose(f); /* a device or directory is not an INI file */
+        return NULL;
+    }
+    char *buf = NULL;
+    size_t cap = 0;
+    int insec = section[0] == '\0';
     char *result = NULL;
-    while (result == NULL && fgets(buf, sizeof(buf), f)) {
+    while (result == NULL && getline(&buf, &cap, f) >= 0) {
         char *s = trim(buf);
         if (*s == '#' || *s == ';' || *s == '\0')
             continue;
         if (*s == '[') {
             char *close = strchr(s, ']');
-            if (close) {
+            if (close != NULL && section[0] != '\0') {
                 *close = '\0';
                 insec = strcmp(s + 1, section) == 0;
             }
@@ -188,6 +312,7 @@ char *halcmd_ini_get(const char *path, const char *section, const char *key)
         if (strcmp(trim(s), key) == 0)
             result = strdup(trim(eq + 1));
     }
+    free(buf);
     fclose(f);
     return result;
 }
