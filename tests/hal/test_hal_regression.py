@@ -14,7 +14,7 @@ Every directory tests/hal/<name>/ is one test:
   ``bash checkresult <result>`` must exit 0 (LinuxCNC's convention).
 
 The environment of each test: HAL_INSTANCE unique to it, HM_BUILD, PATH
-with $HM_BUILD/bin first, HAL_RTLIB_DIR including lib/rtlib-test (the
+with $HM_BUILD/bin first, HAL_RTLIB_PATH including lib/rtlib-test (the
 test-only component hm_testmod).  After each test the instance is cleaned
 with ``halrun -U`` so a failing test leaves nothing behind.
 """
@@ -49,9 +49,11 @@ def hal_env(instance: str) -> dict[str, str]:
     env["HAL_INSTANCE"] = instance
     env["HM_BUILD"] = str(BUILD)
     env["PATH"] = f"{BUILD / 'bin'}:{env.get('PATH', '')}"
-    env["HAL_RTLIB_DIR"] = f"{BUILD / 'lib' / 'rtlib-test'}:{BUILD / 'lib' / 'rtlib'}"
-    env.pop("HAL_SIMCLOCK", None)
-    env.pop("RTAPI_MSG_LEVEL", None)
+    env["HAL_RTLIB_PATH"] = f"{BUILD / 'lib' / 'rtlib-test'}:{BUILD / 'lib' / 'rtlib'}"
+    env.pop("HAL_RTLIB_DIR", None)
+    for var in ("HAL_SIMCLOCK", "RTAPI_MSG_LEVEL", "HAL_HALRUN", "HAL_RTAPI_STDIO", "HAL_GROUP",
+                "HAL_OWNER", "HAL_TIMING_EVERY"):
+        env.pop(var, None)
     return env
 
 

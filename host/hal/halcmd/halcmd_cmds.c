@@ -297,6 +297,62 @@ static void sleep_ms(int ms)
 }
 
 
+/* A signal (Ctrl-C, SIGTERM, SIGHUP) that ends a wait for a program. */
+static volatile sig_atomic_t interrupted;
+
+static void on_interrupt(int sig) { interrupted = sig; }
+
+static void catch_interrupts(int on)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof(sa));
+    sa.sa_handler = on ? on_interrupt : SIG_DFL;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+}
+
+/* Remove the components a (dead) process left in HAL. */
+static void remove_comps_of(int pid)
+{
+    user_comps_t *u = calloc(1, sizeof(*u));
+    if (u == NULL)
+        return;
+    hal_q_foreach(HAL_Q_COMP, NULL, collect_user, u);
+    for (int i = 0; i < u->n; i++) {
+        hal_q_comp_t c;
+        if (u->pids[i] == pid && hal_q_comp(u->names[i], &c) == 0)
+            halpr_comp_delete(c.id);
+    }
+    free(u);
+}
+
+/* Stop a program started by loadusr that we give up on, and everything
+ * it put into HAL, so no process and no stale component is left. */
+static void stop_child(pid_t pid)
+{
+    int st;
+    if (waitpid(pid, &st, WNOHANG) == 0) {
+        kill(pid, SIGTERM);
+        for (int t = 0; t < 200 && waitpid(pid, &st, WNOHANG) == 0; t++)
+            sleep_ms(10);
+        if (waitpid(pid, &st, WNOHANG) == 0) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &st, 0);
+        }
+    }
+    remove_comps_of(pid);
+}
+
+static int interrupted_wait(pid_t pid, const char *prog)
+{
+    stop_child(pid);
+    halcmd_error("loadusr: interrupted (signal %d) while waiting for '%s'; stopped it\n",
+                 (int)interrupted, prog);
+    hc.done = 1; /* the whole run was interrupted */
+    return -EINTR;
+}
+
 /* Remove the component of a process that died without hal_exit. */
 static void reap_dead_comp(const char *name)
 {
@@ -405,6 +461,9 @@ static char *find_program(const char *prog)
     return NULL;
 }
 
+static int wait_for_ready(pid_t pid, const char *prog, const char *wait_name);
+static int wait_for_exit(pid_t pid, const char *prog, int ignore_rc);
+
 static int do_loadusr_cmd(int argc, char **argv)
 {
     int wait_ready = 0, wait_exit = 0, ignore_rc = 0;
@@ -489,15 +548,28 @@ static int do_loadusr_cmd(int argc, char **argv)
         _exit(127);
     }
     free(path);
-    if (wait_ready) {
+    catch_interrupts(1);
+    int rc = wait_ready ? wait_for_ready(pid, prog, wait_name) : 0;
+    if (rc == 0 && wait_exit)
+        rc = wait_for_exit(pid, prog, ignore_rc);
+    catch_interrupts(0);
+    return rc;
+}
+
+static int wait_for_ready(pid_t pid, const char *prog, const char *wait_name)
+{
+    {
         int ready = 0, hinted = 0;
         for (int t = 0; !ready; t++) {
             if (hal_q_component_ready(wait_name)) {
                 ready = 1;
                 break;
             }
+            if (interrupted)
+                return interrupted_wait(pid, prog);
             int st;
             if (waitpid(pid, &st, WNOHANG) == pid) {
+                remove_comps_of(pid);
                 halcmd_error("%s exited without becoming ready\n", prog);
                 return -ECHILD;
             }
@@ -526,15 +598,23 @@ static int do_loadusr_cmd(int argc, char **argv)
         }
         halcmd_info("Component '%s' ready\n", wait_name);
     }
-    if (wait_exit) {
-        int st;
-        while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
-            ;
-        int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-        if (code != 0 && !ignore_rc) {
-            halcmd_error("program '%s' failed, returned %d\n", prog, code);
-            return -1;
-        }
+    return 0;
+}
+
+static int wait_for_exit(pid_t pid, const char *prog, int ignore_rc)
+{
+    int st;
+    while (waitpid(pid, &st, 0) < 0) {
+        if (errno != EINTR)
+            return -errno;
+        if (interrupted)
+            return interrupted_wait(pid, prog);
+    }
+    remove_comps_of(pid);
+    int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    if (code != 0 && !ignore_rc) {
+        halcmd_error("program '%s' failed, returned %d\n", prog, code);
+        return -1;
     }
     return 0;
 }
@@ -551,13 +631,22 @@ static int do_waitusr_cmd(int argc, char **argv)
         halcmd_error("'%s' is not a user space component\n", argv[1]);
         return -EINVAL;
     }
+    catch_interrupts(1);
     while (hal_q_component_exists(argv[1])) {
+        if (interrupted) {
+            catch_interrupts(0);
+            halcmd_error("waitusr: interrupted (signal %d) while waiting for '%s'\n",
+                         (int)interrupted, argv[1]);
+            hc.done = 1;
+            return -EINTR;
+        }
         reap_dead_comp(argv[1]);
         /* Reap our own children so their pids die. */
         while (waitpid(-1, NULL, WNOHANG) > 0)
             ;
         sleep_ms(10);
     }
+    catch_interrupts(0);
     return 0;
 }
 

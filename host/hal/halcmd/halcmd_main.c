@@ -182,8 +182,9 @@ int main(int argc, char **argv)
             continue;
         }
         if (strcmp(a, "--session-state") == 0) {
+            static const char *const names[] = {"none", "running", "stale", "idle"};
             int st = hal_priv_session_state();
-            printf("%s\n", st == 0 ? "none" : st == 1 ? "running" : "stale");
+            printf("%s\n", names[st]);
             return st;
         }
         if (strcmp(a, "--session-rtapi-pid") == 0) {
@@ -305,6 +306,15 @@ int main(int argc, char **argv)
         return 1;
     if (release)
         hal_priv_force_unlock();
+    int dead = 0;
+    if (hal_priv_rt_lost(&dead)) {
+        fprintf(stderr,
+                "halcmd: the realtime host of HAL session '%s' (rtapi_app, pid %d) is gone "
+                "(killed or crashed): its realtime components and threads no longer run.\n"
+                "Run 'halrun -U' to clean up the session.\n",
+                hal_priv_instance(), dead);
+        return 1;
+    }
     const char *want_sim = getenv("HAL_SIMCLOCK");
     if (want_sim && *want_sim && strcmp(want_sim, "0") != 0 && !hal_hdr->simclock) {
         fprintf(stderr, "halcmd: HAL session %s already runs on the wall clock; "
@@ -339,5 +349,11 @@ int main(int argc, char **argv)
     }
     fflush(stdout);
     hal_exit(hc.comp_id);
+    /* On its own (not under halrun, which ends the session itself), the
+     * last halcmd leaving an empty session removes it: `halcmd loadrt
+     * and2; halcmd unload all` leaves nothing behind. */
+    const char *in_halrun = getenv("HAL_HALRUN");
+    if (in_halrun == NULL || in_halrun[0] == '\0')
+        hal_priv_session_release();
     return rc ? 1 : 0;
 }

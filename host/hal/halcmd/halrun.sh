@@ -68,8 +68,9 @@ if [ -n "$inifile" ]; then
 fi
 
 # rtapi_app (started by halcmd on demand) shares this terminal; halrun
-# waits for it at the end.
-export HAL_RTAPI_STDIO=inherit
+# waits for it at the end.  The halcmds run here leave the session to
+# halrun's end (HAL_HALRUN).
+export HAL_RTAPI_STDIO=inherit HAL_HALRUN=1
 
 state=$("$HALCMD" --session-state 2>/dev/null)
 case "$state" in
@@ -79,20 +80,49 @@ running)
 stale)
     echo "$THIS: found a stale HAL session (instance ${HAL_INSTANCE:-0}) left by a crashed run.  Use 'halrun -U' to clean it up." 1>&2
     exit 1 ;;
+idle)
+    echo "$THIS: HAL session (instance ${HAL_INSTANCE:-0}) is in use by halcmd outside halrun (signals or a lock left in it).  Use 'halrun -U' to remove it." 1>&2
+    exit 1 ;;
 esac
+
+# Interrupted (Ctrl-C, SIGTERM, SIGHUP): stop the running halcmd, then
+# still end the session, so nothing is left behind.  halcmd runs in the
+# background with `wait`, which a signal interrupts at once.
+child=
+ending=false
+end_session() {
+    $ending && return
+    ending=true
+    if [ -n "$child" ]; then
+        kill -TERM "$child" 2>/dev/null
+        wait "$child" 2>/dev/null
+    fi
+    "$HALCMD" --session-end
+}
+trap 'end_session; exit 130' INT
+trap 'end_session; exit 143' TERM
+trap 'end_session; exit 129' HUP
+
+run_halcmd() {
+    "$HALCMD" "$@" <&0 &
+    child=$!
+    wait "$child"
+    local rc=$?
+    child=
+    return $rc
+}
 
 result=0
 if [ -n "$filename" ]; then
-    case $filename in
-    *.hal|*) "$HALCMD" "${args[@]}" -f "$filename"; result=$? ;;
-    esac
+    run_halcmd "${args[@]}" -f "$filename"; result=$?
 else
     INTERACTIVE=true
 fi
 if $INTERACTIVE; then
-    "$HALCMD" "${args[@]}" -kf
+    run_halcmd "${args[@]}" -kf
 fi
 
 # stop, unload all, wait for rtapi_app, remove the session
+ending=true
 "$HALCMD" --session-end || result=$?
 exit $result

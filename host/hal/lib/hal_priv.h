@@ -27,7 +27,7 @@ extern "C" {
 typedef uint32_t hal_off_t;
 
 #define HAL_SHM_MAGIC 0x484d4832u /* "HMH2" */
-#define HAL_SHM_VERSION 4u
+#define HAL_SHM_VERSION 5u
 #define HAL_HASH_SIZE 4096u /* buckets per name index (power of 2) */
 #define HAL_DEFAULT_SHM_SIZE (8u * 1024u * 1024u)
 #define HAL_ARGS_LEN 256
@@ -137,6 +137,9 @@ typedef struct {
     volatile int64_t sim_time;
     volatile uint32_t sim_abort; /* bumped when waiting functions must give up */
     int rtapi_pid;
+    unsigned long long rtapi_start; /* its start time (/proc/PID/stat), against pid reuse */
+    uint32_t owner_uid; /* the user the session belongs to */
+    int32_t group_gid;  /* HAL_GROUP given at creation, or -1 */
     volatile int msg_level;
     int exact_for_test;
     long clock_period; /* period of the first thread */
@@ -169,21 +172,54 @@ extern hal_hdr_t *hal_hdr;
 
 /* Attach to (creating if needed) this session's segment.  0 or -errno. */
 int hal_priv_attach(void);
-/* Segment name of the session (depends on HAL_INSTANCE). */
+/* Unmap the segment (after hal_priv_session_release). */
+void hal_priv_detach(void);
+/* Segment name of the session (depends on HAL_INSTANCE and HAL_OWNER). */
 const char *hal_priv_shm_name(void);
 const char *hal_priv_instance(void);
+/* The session's owner (HAL_OWNER or our uid) and HAL_GROUP's gid (-1
+ * unset, -2 no such group). */
+uid_t hal_priv_owner_uid(void);
+long hal_priv_group_gid(void);
+/* Give fd mode 0600, or 0660 and group gid when gid >= 0. */
+int hal_priv_set_access(int fd, long gid, const char *what);
 /* Abstract unix-socket name of the session's rtapi_app. */
 void hal_priv_socket_name(char *buf, size_t len);
-/* 0: no segment, 1: segment exists and a process of it is alive, 2: stale. */
+
+/* ---- sessions (hal_session.c) ---------------------------------------------- */
+
+enum {
+    HAL_SESSION_NONE = 0,    /* no segment */
+    HAL_SESSION_RUNNING = 1, /* rtapi_app or a user component lives */
+    HAL_SESSION_STALE = 2,   /* left by a crash: a process died inside it */
+    HAL_SESSION_IDLE = 3,    /* no process, no crash (signals made by halcmd) */
+};
 int hal_priv_session_state(void);
 /* 1 when the process exists and is not a zombie. */
 int hal_priv_pid_alive(int pid);
-/* pid of the session's rtapi_app (0: none), without attaching. */
+/* Our start time as rtapi_app records it. */
+unsigned long long hal_priv_self_start_time(void);
+/* pid of the session's live rtapi_app (0: none), without attaching. */
 int hal_priv_session_rtapi_pid(void);
+/* 1 when realtime components are listed but their rtapi_app is gone
+ * (killed, crashed); *pid gets its last pid.  Needs the segment attached. */
+int hal_priv_rt_lost(int *pid);
 /* Terminate the session's rtapi_app and user components (halrun -U). */
 void hal_priv_session_kill(void);
-/* Remove the session's segment and rtapi shmem blocks (halrun -U, end of halrun). */
+/* Remove the session's segment, rtapi shmem blocks and log (halrun -U,
+ * end of halrun). */
 int hal_priv_session_destroy(void);
+/* Called by a halcmd leaving the session: when nothing is left in it (no
+ * component, process, signal, thread or lock), remove it and detach.
+ * Returns 1 when removed. */
+int hal_priv_session_release(void);
+/* The private runtime directory ($XDG_RUNTIME_DIR/hm2hal or
+ * /tmp/hm2hal-UID, mode 0700, checked: ours, not a link), created when
+ * `create`.  0 or -errno. */
+int hal_priv_runtime_dir(char *buf, size_t len, int create);
+/* Open (create, append) rtapi_app's log in the runtime directory, safely;
+ * fd or -errno; the path is stored in `path`. */
+int hal_priv_open_log(char *path, size_t len);
 
 void hal_priv_lock(void);
 void hal_priv_unlock(void);

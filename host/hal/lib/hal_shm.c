@@ -1,14 +1,14 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
- * hal_shm.c - the session's shared-memory segment: naming (HAL_INSTANCE),
- * creation/attachment, the one robust mutex, the bump allocators and the
- * session liveness check used by halrun.
+ * hal_shm.c - the session's shared-memory segment: naming (HAL_INSTANCE,
+ * HAL_OWNER), access rights (private, or shared with HAL_GROUP),
+ * creation/attachment and the one robust mutex.
  */
 #define _GNU_SOURCE
-#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <signal.h>
+#include <grp.h>
+#include <pwd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +31,35 @@ const char *hal_priv_instance(void)
     return inst;
 }
 
+/* Owner of the session: HAL_OWNER (a user name or uid, for joining a
+ * session another user shares through HAL_GROUP), else ourselves. */
+uid_t hal_priv_owner_uid(void)
+{
+    const char *o = getenv("HAL_OWNER");
+    if (o == NULL || o[0] == '\0')
+        return getuid();
+    char *end;
+    unsigned long v = strtoul(o, &end, 10);
+    if (*end == '\0')
+        return (uid_t)v;
+    struct passwd *pw = getpwnam(o);
+    return pw != NULL ? pw->pw_uid : (uid_t)-1;
+}
+
+/* The group named by HAL_GROUP, -1 when unset, -2 when it does not exist. */
+long hal_priv_group_gid(void)
+{
+    const char *g = getenv("HAL_GROUP");
+    if (g == NULL || g[0] == '\0')
+        return -1;
+    char *end;
+    unsigned long v = strtoul(g, &end, 10);
+    if (*end == '\0')
+        return (long)v;
+    struct group *gr = getgrnam(g);
+    return gr != NULL ? (long)gr->gr_gid : -2;
+}
+
 const char *hal_priv_shm_name(void)
 {
     /* The instance string is user input: keep only characters that are
@@ -41,13 +70,15 @@ const char *hal_priv_shm_name(void)
     for (const char *p = inst; *p && n < sizeof(clean) - 1; p++)
         clean[n++] = (*p == '/') ? '_' : *p;
     clean[n] = '\0';
-    snprintf(shm_name_buf, sizeof(shm_name_buf), "/hm2hal-%u-%s", (unsigned)getuid(), clean);
+    snprintf(shm_name_buf, sizeof(shm_name_buf), "/hm2hal-%u-%s",
+             (unsigned)hal_priv_owner_uid(), clean);
     return shm_name_buf;
 }
 
 void hal_priv_socket_name(char *buf, size_t len)
 {
-    /* Abstract unix socket: leading NUL, vanishes with its process. */
+    /* Abstract unix socket: leading NUL, vanishes with its process.  It
+     * has no file permissions: rtapi_app checks each peer (SO_PEERCRED). */
     const char *shm = hal_priv_shm_name();
     if (len < 2)
         return;
@@ -73,7 +104,28 @@ static int env_simclock(void)
     return s != NULL && s[0] != '\0' && strcmp(s, "0") != 0;
 }
 
-static int init_segment(char *base, size_t size)
+int hal_priv_set_access(int fd, long gid, const char *what)
+{
+    /* Explicit modes: a umask of 000 must not make anything world
+     * writable, one of 077 must not lock the group out. */
+    if (gid >= 0) {
+        if (fchown(fd, (uid_t)-1, (gid_t)gid) != 0 || fchmod(fd, 0660) != 0) {
+            int e = errno;
+            fprintf(stderr, "HAL: ERROR: cannot give group %ld access to %s: %s\n", gid, what,
+                    strerror(e));
+            return -e;
+        }
+        return 0;
+    }
+    if (fchmod(fd, 0600) != 0) {
+        int e = errno;
+        fprintf(stderr, "HAL: ERROR: cannot make %s private: %s\n", what, strerror(e));
+        return -e;
+    }
+    return 0;
+}
+
+static int init_segment(char *base, size_t size, long gid)
 {
     hal_hdr_t *h = (hal_hdr_t *)base;
     memset(h, 0, sizeof(*h));
@@ -98,9 +150,62 @@ static int init_segment(char *base, size_t size)
     h->next_id = 2;
     h->msg_level = -1;
     h->simclock = env_simclock();
+    h->owner_uid = (uint32_t)hal_priv_owner_uid();
+    h->group_gid = (int32_t)gid;
     h->version = HAL_SHM_VERSION;
     __atomic_store_n(&h->magic, HAL_SHM_MAGIC, __ATOMIC_RELEASE);
     return 0;
+}
+
+/* Create the segment; fd >= 0, or -errno (-EEXIST: someone else did). */
+static int create_segment(const char *name, size_t size, long gid)
+{
+    int fd = shm_open(name, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW, 0600);
+    if (fd < 0)
+        return -errno;
+    int rc = hal_priv_set_access(fd, gid, name);
+    if (rc == 0 && ftruncate(fd, (off_t)size) != 0) {
+        rc = -errno;
+        fprintf(stderr, "HAL: ERROR: cannot size shared memory %s: %s\n", name, strerror(-rc));
+    }
+    if (rc != 0) {
+        close(fd);
+        shm_unlink(name);
+        return rc;
+    }
+    return fd;
+}
+
+/* Open an existing segment; fd >= 0 with *size set, or -errno. */
+static int open_segment(const char *name, size_t *size)
+{
+    int fd = shm_open(name, O_RDWR | O_NOFOLLOW, 0600);
+    if (fd < 0) {
+        int e = errno;
+        if (e == EACCES)
+            fprintf(stderr,
+                    "HAL: ERROR: HAL session %s belongs to another user (see HAL_GROUP in "
+                    "docs/hal.md)\n",
+                    name);
+        else
+            fprintf(stderr, "HAL: ERROR: cannot open shared memory %s: %s\n", name,
+                    strerror(e));
+        return -e;
+    }
+    struct stat st;
+    /* The creator may still be sizing it. */
+    for (int i = 0; i < 1000; i++) {
+        if (fstat(fd, &st) == 0 && st.st_size > 0)
+            break;
+        usleep(1000);
+    }
+    if ((size_t)st.st_size < sizeof(hal_hdr_t)) {
+        close(fd);
+        fprintf(stderr, "HAL: ERROR: shared memory %s is truncated\n", name);
+        return -EINVAL;
+    }
+    *size = (size_t)st.st_size;
+    return fd;
 }
 
 int hal_priv_attach(void)
@@ -109,42 +214,21 @@ int hal_priv_attach(void)
         return 0;
     const char *name = hal_priv_shm_name();
     size_t size = shm_size_from_env();
-    int created = 0;
-    int fd = shm_open(name, O_RDWR | O_CREAT | O_EXCL, 0600);
-    if (fd >= 0) {
-        created = 1;
-        if (ftruncate(fd, (off_t)size) != 0) {
-            int e = errno;
-            close(fd);
-            shm_unlink(name);
-            fprintf(stderr, "HAL: ERROR: cannot size shared memory %s: %s\n", name, strerror(e));
-            return -e;
-        }
-    } else if (errno == EEXIST) {
-        fd = shm_open(name, O_RDWR, 0600);
-        if (fd < 0) {
-            int e = errno;
-            fprintf(stderr, "HAL: ERROR: cannot open shared memory %s: %s\n", name, strerror(e));
-            return -e;
-        }
-        struct stat st;
-        /* The creator may still be sizing it. */
-        for (int i = 0; i < 1000; i++) {
-            if (fstat(fd, &st) == 0 && st.st_size > 0)
-                break;
-            usleep(1000);
-        }
-        size = (size_t)st.st_size;
-        if (size < sizeof(hal_hdr_t)) {
-            close(fd);
-            fprintf(stderr, "HAL: ERROR: shared memory %s is truncated\n", name);
-            return -EINVAL;
-        }
-    } else {
-        int e = errno;
-        fprintf(stderr, "HAL: ERROR: cannot create shared memory %s: %s\n", name, strerror(e));
-        return -e;
+    long gid = hal_priv_group_gid();
+    if (gid == -2) {
+        fprintf(stderr, "HAL: ERROR: HAL_GROUP '%s' is not a group\n", getenv("HAL_GROUP"));
+        return -EINVAL;
     }
+    int created = 1;
+    int fd = create_segment(name, size, gid);
+    if (fd == -EEXIST) {
+        created = 0;
+        fd = open_segment(name, &size);
+    } else if (fd < 0 && fd != -EACCES) {
+        fprintf(stderr, "HAL: ERROR: cannot create shared memory %s: %s\n", name, strerror(-fd));
+    }
+    if (fd < 0)
+        return fd;
     void *p = mmap(NULL, size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
     int e = errno;
     close(fd);
@@ -156,7 +240,7 @@ int hal_priv_attach(void)
     }
     hal_hdr_t *h = p;
     if (created) {
-        int rc = init_segment(p, size);
+        int rc = init_segment(p, size, gid);
         if (rc < 0) {
             munmap(p, size);
             shm_unlink(name);
@@ -204,153 +288,11 @@ void hal_priv_force_unlock(void)
     pthread_mutexattr_destroy(&attr);
 }
 
-/* Alive and not a zombie (a killed rtapi_app may stay a zombie for a
- * while when its reaper is slow). */
-int hal_priv_pid_alive(int pid)
+void hal_priv_detach(void)
 {
-    if (pid <= 0)
-        return 0;
-    if (kill(pid, 0) != 0 && errno != EPERM)
-        return 0;
-    char path[64], buf[256];
-    snprintf(path, sizeof(path), "/proc/%d/stat", pid);
-    FILE *f = fopen(path, "r");
-    if (f == NULL)
-        return 1;
-    size_t n = fread(buf, 1, sizeof(buf) - 1, f);
-    fclose(f);
-    buf[n] = '\0';
-    const char *rp = strrchr(buf, ')');
-    return !(rp != NULL && rp[1] == ' ' && rp[2] == 'Z');
-}
-
-int hal_priv_session_state(void)
-{
-    const char *name = hal_priv_shm_name();
-    int fd = shm_open(name, O_RDWR, 0600);
-    if (fd < 0)
-        return 0;
-    struct stat st;
-    if (fstat(fd, &st) != 0 || (size_t)st.st_size < sizeof(hal_hdr_t)) {
-        close(fd);
-        return 2;
-    }
-    void *p = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_SHARED, fd, 0);
-    close(fd);
-    if (p == MAP_FAILED)
-        return 2;
-    const hal_hdr_t *h = p;
-    int alive = 0;
-    if (h->magic == HAL_SHM_MAGIC && h->version == HAL_SHM_VERSION &&
-        h->size == (uint32_t)st.st_size) {
-        if (hal_priv_pid_alive(h->rtapi_pid))
-            alive = 1;
-        /* Without the lock (it may be held by a dead process): the lists
-         * are only walked to look for a live user component. */
-        hal_off_t off = h->comp_list;
-        for (int guard = 0; off != 0 && off < h->size && guard < 100000; guard++) {
-            const hal_comp_t *c = (const hal_comp_t *)((const char *)p + off);
-            if (c->type == HAL_COMP_USER && c->pid != getpid() && hal_priv_pid_alive(c->pid))
-                alive = 1;
-            off = c->next;
-        }
-    }
-    munmap(p, (size_t)st.st_size);
-    return alive ? 1 : 2;
-}
-
-int hal_priv_session_rtapi_pid(void)
-{
-    int fd = shm_open(hal_priv_shm_name(), O_RDONLY, 0600);
-    if (fd < 0)
-        return 0;
-    struct stat st;
-    int pid = 0;
-    if (fstat(fd, &st) == 0 && (size_t)st.st_size >= sizeof(hal_hdr_t)) {
-        void *p = mmap(NULL, sizeof(hal_hdr_t), PROT_READ, MAP_SHARED, fd, 0);
-        if (p != MAP_FAILED) {
-            const hal_hdr_t *h = p;
-            if (h->magic == HAL_SHM_MAGIC)
-                pid = h->rtapi_pid;
-            munmap(p, sizeof(hal_hdr_t));
-        }
-    }
-    close(fd);
-    return pid;
-}
-
-void hal_priv_session_kill(void)
-{
-    const char *name = hal_priv_shm_name();
-    int fd = shm_open(name, O_RDWR, 0600);
-    if (fd < 0)
+    if (hal_shmem_base == NULL)
         return;
-    struct stat st;
-    if (fstat(fd, &st) != 0 || (size_t)st.st_size < sizeof(hal_hdr_t)) {
-        close(fd);
-        return;
-    }
-    void *p = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_SHARED, fd, 0);
-    close(fd);
-    if (p == MAP_FAILED)
-        return;
-    const hal_hdr_t *h = p;
-    int pids[256], n = 0;
-    if (h->magic == HAL_SHM_MAGIC && h->size == (uint32_t)st.st_size) {
-        if (h->rtapi_pid > 0)
-            pids[n++] = h->rtapi_pid;
-        hal_off_t off = h->comp_list;
-        for (int guard = 0; off != 0 && off < h->size && guard < 100000 && n < 256; guard++) {
-            const hal_comp_t *c = (const hal_comp_t *)((const char *)p + off);
-            if (c->type == HAL_COMP_USER && c->pid > 0 && c->pid != getpid())
-                pids[n++] = c->pid;
-            off = c->next;
-        }
-    }
-    munmap(p, (size_t)st.st_size);
-    for (int i = 0; i < n; i++)
-        if (hal_priv_pid_alive(pids[i]))
-            kill(pids[i], SIGTERM);
-    for (int t = 0; t < 200; t++) {
-        int any = 0;
-        for (int i = 0; i < n; i++)
-            any |= hal_priv_pid_alive(pids[i]);
-        if (!any)
-            return;
-        usleep(10000);
-    }
-    for (int i = 0; i < n; i++)
-        if (hal_priv_pid_alive(pids[i]))
-            kill(pids[i], SIGKILL);
-}
-
-int hal_priv_session_destroy(void)
-{
-    const char *name = hal_priv_shm_name();
-    int rc = 0;
-    if (shm_unlink(name) != 0 && errno != ENOENT)
-        rc = -errno;
-    /* rtapi_app's log when it ran without a terminal (rtapi_client.c) */
-    char logname[256];
-    snprintf(logname, sizeof(logname), "/tmp%s.log", name);
-    unlink(logname);
-    /* Other shared memory of the session: rtapi_shmem blocks (NAME-shm-KEY)
-     * and the components' stream channels (NAME.sampler.N, ...). */
-    char prefix[128], prefix2[128];
-    snprintf(prefix, sizeof(prefix), "%s-shm-", name + 1);
-    snprintf(prefix2, sizeof(prefix2), "%s.", name + 1);
-    DIR *d = opendir("/dev/shm");
-    if (d != NULL) {
-        struct dirent *e;
-        while ((e = readdir(d)) != NULL) {
-            if (strncmp(e->d_name, prefix, strlen(prefix)) == 0 ||
-                strncmp(e->d_name, prefix2, strlen(prefix2)) == 0) {
-                char n2[300];
-                snprintf(n2, sizeof(n2), "/%s", e->d_name);
-                shm_unlink(n2);
-            }
-        }
-        closedir(d);
-    }
-    return rc;
+    munmap(hal_shmem_base, hal_hdr->size);
+    hal_shmem_base = NULL;
+    hal_hdr = NULL;
 }

@@ -214,13 +214,19 @@ int rtapi_shmem_new(int key, int module_id, unsigned long size)
     char name[128];
     shmem_name(name, sizeof(name), key);
     size_t total = size + SHMEM_HDR;
-    int fd = shm_open(name, O_RDWR | O_CREAT, 0600);
+    int fd = shm_open(name, O_RDWR | O_CREAT | O_NOFOLLOW, 0600);
     if (fd < 0) {
         int e = errno;
         rtapi_print_msg(RTAPI_MSG_ERR, "RTAPI: ERROR: shmem key %d: %s\n", key, strerror(e));
         return -e;
     }
     struct stat st;
+    /* Same access as the session's segment: private, or its HAL group. */
+    long gid = (hal_hdr != NULL || hal_priv_attach() == 0) ? hal_hdr->group_gid : -1;
+    if (fstat(fd, &st) == 0 && st.st_size == 0 && hal_priv_set_access(fd, gid, name) != 0) {
+        close(fd);
+        return -EPERM;
+    }
     if (fstat(fd, &st) == 0 && st.st_size == 0 && ftruncate(fd, (off_t)total) != 0) {
         int e = errno;
         close(fd);

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/un.h>
 #include <unistd.h>
@@ -32,6 +33,10 @@ int main(int argc, char **argv)
 {
     (void)argc;
     (void)argv;
+    /* Process name hm2-rtapi_app: an installed LinuxCNC counts every
+     * process named exactly `rtapi_app` as its own realtime (its halrun
+     * then refuses to start), so the two can run side by side. */
+    prctl(PR_SET_NAME, "hm2-rtapi_app", 0, 0, 0);
     signal(SIGPIPE, SIG_IGN);
     struct sigaction sa;
     memset(&sa, 0, sizeof(sa));
@@ -67,7 +72,8 @@ int main(int argc, char **argv)
     if (hal_priv_attach() != 0)
         return 1;
     hal_priv_set_thread_hooks(&rtapi_thread_hooks);
-    hal_hdr->rtapi_pid = getpid();
+    hal_hdr->rtapi_start = hal_priv_self_start_time();
+    __atomic_store_n(&hal_hdr->rtapi_pid, getpid(), __ATOMIC_RELEASE);
     int rc = rtapi_threads_init(hal_hdr->simclock);
     if (rc != 0) {
         fprintf(stderr, "rtapi_app: cannot start the simulated-clock scheduler: %s\n",
@@ -79,8 +85,10 @@ int main(int argc, char **argv)
     close(lfd);
     rtapi_unload_all();
     rtapi_threads_exit();
-    if (hal_hdr->rtapi_pid == getpid())
+    if (hal_hdr->rtapi_pid == getpid()) {
         hal_hdr->rtapi_pid = 0;
+        hal_hdr->rtapi_start = 0;
+    }
     rtapi_server_exit();
     return 0;
 }

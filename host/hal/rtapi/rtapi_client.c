@@ -66,6 +66,17 @@ static int rtapi_app_path(char *buf, size_t len)
     return -ENOENT;
 }
 
+/* In the daemon child: no descriptor of the caller survives (a lock or
+ * a pipe held open by a daemon hangs whoever waits for it). */
+static void close_inherited_fds(void)
+{
+    long max = sysconf(_SC_OPEN_MAX);
+    if (max < 0 || max > 65536)
+        max = 65536;
+    for (int fd = 3; fd < max; fd++)
+        close(fd);
+}
+
 static int start_rtapi_app(void)
 {
     char path[PATH_MAX];
@@ -74,40 +85,45 @@ static int start_rtapi_app(void)
         fprintf(stderr, "HAL: ERROR: cannot find rtapi_app next to this program\n");
         return rc;
     }
+    /* Under halrun (which waits for rtapi_app at its end) the daemon
+     * shares the session's terminal, as LinuxCNC's does.  A halcmd run on
+     * its own may have pipes as stdout/stderr that its caller reads to
+     * EOF; the daemon must not hold them open, so its messages go to the
+     * session log in the private runtime directory instead. */
+    const char *stdio = getenv("HAL_RTAPI_STDIO");
+    int log = -1;
+    if (stdio == NULL || strcmp(stdio, "inherit") != 0) {
+        char logname[512];
+        log = hal_priv_open_log(logname, sizeof(logname));
+        if (log < 0)
+            return log;
+    }
     pid_t pid = fork();
-    if (pid < 0)
-        return -errno;
+    if (pid < 0) {
+        int e = errno;
+        if (log >= 0)
+            close(log);
+        return -e;
+    }
     if (pid == 0) {
         /* Grandchild becomes the daemon, so nobody has to reap it. */
         if (fork() != 0)
             _exit(0);
         setsid();
         int devnull = open("/dev/null", O_RDWR);
-        if (devnull >= 0) {
+        if (devnull >= 0)
             dup2(devnull, 0);
-            if (devnull > 2)
-                close(devnull);
+        if (log >= 0) {
+            dup2(log, 1);
+            dup2(log, 2);
         }
-        /* Under halrun (which waits for rtapi_app at its end) the daemon
-         * shares the session's terminal, as LinuxCNC's does.  A halcmd run
-         * on its own may have pipes as stdout/stderr that its caller reads
-         * to EOF; the daemon must not hold them open, so its messages go
-         * to the session log instead. */
-        const char *stdio = getenv("HAL_RTAPI_STDIO");
-        if (stdio == NULL || strcmp(stdio, "inherit") != 0) {
-            char logname[256];
-            snprintf(logname, sizeof(logname), "/tmp%s.log", hal_priv_shm_name());
-            int log = open(logname, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
-            if (log >= 0) {
-                dup2(log, 1);
-                dup2(log, 2);
-                close(log);
-            }
-        }
+        close_inherited_fds();
         execl(path, "rtapi_app", (char *)NULL);
         fprintf(stderr, "HAL: ERROR: cannot run %s: %s\n", path, strerror(errno));
         _exit(127);
     }
+    if (log >= 0)
+        close(log);
     int st;
     waitpid(pid, &st, 0);
     return 0;
@@ -118,6 +134,17 @@ int rtapi_client_connect(int start)
     int fd = try_connect();
     if (fd >= 0 || !start)
         return fd;
+    /* A fresh rtapi_app would run none of the components the dead one
+     * left listed: refuse until the session is cleaned. */
+    int dead = 0;
+    if (hal_priv_attach() == 0 && hal_priv_rt_lost(&dead)) {
+        fprintf(stderr,
+                "HAL: ERROR: the realtime host of HAL session '%s' (rtapi_app, pid %d) is "
+                "gone; its components no longer run.  Run 'halrun -U' to clean up the "
+                "session.\n",
+                hal_priv_instance(), dead);
+        return -EOWNERDEAD;
+    }
     int rc = start_rtapi_app();
     if (rc != 0)
         return rc;

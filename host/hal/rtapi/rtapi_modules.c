@@ -41,23 +41,39 @@ static void free_strings(module_t *m)
 
 static module_t *modules;
 
+/* Look for NAME.so in each directory of a colon-separated list. */
+static int search_dirs(const char *list, const char *name, char *path, size_t len)
+{
+    if (list == NULL || *list == '\0')
+        return -ENOENT;
+    char *dirs = strdup(list), *save = NULL;
+    if (dirs == NULL)
+        return -ENOMEM;
+    int rc = -ENOENT;
+    for (char *d = strtok_r(dirs, ":", &save); d && rc != 0; d = strtok_r(NULL, ":", &save)) {
+        if ((size_t)snprintf(path, len, "%s/%s.so", d, name) < len && access(path, R_OK) == 0)
+            rc = 0;
+    }
+    free(dirs);
+    return rc;
+}
+
+/* The component search path (docs/rtapi.md): $HAL_RTLIB_PATH (and its
+ * older name $HAL_RTLIB_DIR), the user folder
+ * $HOME/.local/lib/hm2stack/rtlib, then the build's lib/rtlib.  Only a
+ * plain name is looked up, so nothing outside these folders loads. */
 static int find_module_file(const char *name, char *path, size_t len)
 {
-    if (strchr(name, '/') != NULL || strlen(name) > HAL_NAME_LEN)
-        return -EINVAL;
-    const char *env = getenv("HAL_RTLIB_DIR");
-    if (env != NULL && *env) {
-        char *dirs = strdup(env), *save = NULL;
-        if (dirs == NULL)
-            return -ENOMEM;
-        for (char *d = strtok_r(dirs, ":", &save); d; d = strtok_r(NULL, ":", &save)) {
-            if ((size_t)snprintf(path, len, "%s/%s.so", d, name) < len &&
-                access(path, R_OK) == 0) {
-                free(dirs);
-                return 0;
-            }
-        }
-        free(dirs);
+    if (search_dirs(getenv("HAL_RTLIB_PATH"), name, path, len) == 0 ||
+        search_dirs(getenv("HAL_RTLIB_DIR"), name, path, len) == 0)
+        return 0;
+    const char *home = getenv("HOME");
+    if (home != NULL && home[0] == '/') {
+        char user[PATH_MAX];
+        if ((size_t)snprintf(user, sizeof(user), "%s/.local/lib/hm2stack/rtlib", home) <
+                sizeof(user) &&
+            search_dirs(user, name, path, len) == 0)
+            return 0;
     }
     char self[PATH_MAX];
     ssize_t n = readlink("/proc/self/exe", self, sizeof(self) - 1);
@@ -69,12 +85,28 @@ static int find_module_file(const char *name, char *path, size_t len)
             if ((size_t)snprintf(path, len, "%s/../lib/rtlib/%s.so", self, name) < len &&
                 access(path, R_OK) == 0)
                 return 0;
-            if ((size_t)snprintf(path, len, "%s/rtlib/%s.so", self, name) < len &&
-                access(path, R_OK) == 0)
-                return 0;
         }
     }
     return -ENOENT;
+}
+
+/* A module name is a plain file name: no directory, no way out of the
+ * search path. */
+static int check_module_name(const char *name)
+{
+    if (name[0] == '\0' || strchr(name, '/') != NULL || strstr(name, "..") != NULL) {
+        rtapi_print_msg(RTAPI_MSG_ERR,
+                        "%s: refused: a module name must not contain '/' or '..' (modules load "
+                        "only from the component search path, see docs/rtapi.md)\n",
+                        name);
+        return -EINVAL;
+    }
+    if (strlen(name) > HAL_NAME_LEN) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: module name too long (at most %d characters)\n",
+                        name, HAL_NAME_LEN);
+        return -EINVAL;
+    }
+    return 0;
 }
 
 int rtapi_parse_long(const char *s, long *out)
@@ -212,6 +244,9 @@ int rtapi_do_load(int argc, char **argv)
             rtapi_print_msg(RTAPI_MSG_ERR, "%s: already exists\n", name);
             return -EEXIST;
         }
+    int rc0 = check_module_name(name);
+    if (rc0 != 0)
+        return rc0;
     char path[PATH_MAX];
     if (find_module_file(name, path, sizeof(path)) != 0) {
         rtapi_print_msg(RTAPI_MSG_ERR, "%s: dlopen: %s.so: cannot open shared object file: "

@@ -8,6 +8,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -498,6 +499,75 @@ static void test_dead_lock_holder(void)
     CHECK_EQ_INT(hal_signal_delete("after-crash"), 0);
 }
 
+/* The runtime directory is private and checked; the log never follows a
+ * planted link. */
+static void test_runtime_dir(void)
+{
+    char base[] = "/tmp/hal-unit-rtdir-XXXXXX";
+    CHECK(mkdtemp(base) != NULL);
+    char *old = getenv("XDG_RUNTIME_DIR") ? strdup(getenv("XDG_RUNTIME_DIR")) : NULL;
+    setenv("XDG_RUNTIME_DIR", base, 1);
+    char dir[256], want[300], path[512];
+    snprintf(want, sizeof(want), "%s/hm2hal", base);
+    CHECK_EQ_INT(hal_priv_runtime_dir(dir, sizeof(dir), 1), 0);
+    CHECK_EQ_STR(dir, want);
+    struct stat st;
+    CHECK(lstat(dir, &st) == 0 && S_ISDIR(st.st_mode) && (st.st_mode & 0777) == 0700);
+    /* a log path planted as a symbolic link is not followed */
+    snprintf(path, sizeof(path), "%s/%s.log", dir, hal_priv_shm_name() + 1);
+    CHECK(symlink("/tmp/hal-unit-victim", path) == 0);
+    CHECK(hal_priv_open_log(path, sizeof(path)) < 0);
+    CHECK(access("/tmp/hal-unit-victim", F_OK) != 0);
+    unlink(path);
+    int fd = hal_priv_open_log(path, sizeof(path));
+    CHECK(fd >= 0);
+    if (fd >= 0)
+        close(fd);
+    CHECK(lstat(path, &st) == 0 && S_ISREG(st.st_mode) && (st.st_mode & 0777) == 0600);
+    unlink(path);
+    /* a directory others may use is refused, and so is a link to one */
+    chmod(dir, 0755);
+    CHECK_EQ_INT(hal_priv_runtime_dir(dir, sizeof(dir), 1), -EPERM);
+    rmdir(want);
+    CHECK(symlink("/tmp", want) == 0);
+    CHECK_EQ_INT(hal_priv_runtime_dir(dir, sizeof(dir), 1), -EPERM);
+    unlink(want);
+    rmdir(base);
+    if (old != NULL) {
+        setenv("XDG_RUNTIME_DIR", old, 1);
+        free(old);
+    } else {
+        unsetenv("XDG_RUNTIME_DIR");
+    }
+}
+
+/* A session with nothing left in it is removed by the last halcmd
+ * (hal_priv_session_release); one with a signal is kept. */
+static void test_session_release(void)
+{
+    char inst[64], seg[128];
+    snprintf(inst, sizeof(inst), "unit-hal-rel-%d", (int)getpid());
+    char *old = strdup(getenv("HAL_INSTANCE"));
+    hal_priv_detach();
+    setenv("HAL_INSTANCE", inst, 1);
+    snprintf(seg, sizeof(seg), "/dev/shm%s", hal_priv_shm_name());
+    int id = hal_init("relcomp");
+    CHECK(id > 0);
+    CHECK_EQ_INT(hal_priv_session_release(), 0); /* our component keeps it */
+    CHECK_EQ_INT(hal_signal_new("keep-me", HAL_FLOAT), 0);
+    CHECK_EQ_INT(hal_exit(id), 0);
+    CHECK_EQ_INT(hal_priv_session_state(), HAL_SESSION_IDLE);
+    CHECK_EQ_INT(hal_priv_session_release(), 0);
+    CHECK(access(seg, F_OK) == 0);
+    CHECK_EQ_INT(hal_signal_delete("keep-me"), 0);
+    CHECK_EQ_INT(hal_priv_session_release(), 1);
+    CHECK(access(seg, F_OK) != 0);
+    CHECK_EQ_INT(hal_priv_session_state(), HAL_SESSION_NONE);
+    setenv("HAL_INSTANCE", old, 1);
+    free(old);
+    CHECK_EQ_INT(hal_priv_attach(), 0);
+}
+
 int main(void)
 {
     char inst[64];
@@ -518,6 +588,8 @@ int main(void)
     RUN(test_exit_cleans);
     RUN(test_concurrent_processes);
     RUN(test_dead_lock_holder);
+    RUN(test_runtime_dir);
+    RUN(test_session_release);
     hal_priv_session_destroy();
     return check_summary();
 }
