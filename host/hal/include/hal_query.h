@@ -68,6 +68,7 @@ typedef struct {
 typedef struct {
     char name[HAL_NAME_LEN + 1];
     int owner_id;
+    char owner[HAL_NAME_LEN + 1];
     int uses_fp, reentrant, users;
     unsigned long long code_addr, arg; /* as seen by rtapi_app */
 } hal_q_funct_t;
@@ -105,6 +106,34 @@ int hal_q_sig_pins(const char *sig, char (*names)[HAL_NAME_LEN + 1], int max);
 typedef int (*hal_q_name_cb)(const char *name, void *ctx);
 int hal_q_foreach(hal_q_kind_t kind, const char *pattern, hal_q_name_cb cb, void *ctx);
 int hal_q_match(const char *pattern, const char *name);
+
+/* Snapshots: every object of a kind, in the order halcmd's show lists
+ * them (components and threads newest first, the others sorted by name),
+ * copied under the lock; cb then runs without it, so it may call any hal_q
+ * function.  cb returns nonzero to stop.  Returns the number of objects
+ * visited, or -errno. */
+typedef int (*hal_q_comp_cb)(const hal_q_comp_t *c, void *ctx);
+typedef int (*hal_q_pin_cb)(const hal_q_pin_t *p, void *ctx); /* pins and parameters */
+typedef int (*hal_q_sig_cb)(const hal_q_sig_t *s, void *ctx);
+typedef int (*hal_q_funct_cb)(const hal_q_funct_t *f, void *ctx);
+typedef int (*hal_q_thread_cb)(const hal_q_thread_t *t, void *ctx);
+int hal_q_each_comp(hal_q_comp_cb cb, void *ctx);
+int hal_q_each_pin(hal_q_pin_cb cb, void *ctx);
+int hal_q_each_param(hal_q_pin_cb cb, void *ctx);
+int hal_q_each_sig(hal_q_sig_cb cb, void *ctx);
+int hal_q_each_funct(hal_q_funct_cb cb, void *ctx);
+int hal_q_each_thread(hal_q_thread_cb cb, void *ctx);
+
+/* Memory and lock of the session (halcmd's status). */
+typedef struct {
+    unsigned char lock;
+    long shmem_used, shmem_total; /* bytes */
+    int active_comps, active_pins, active_params, active_aliases, active_sigs,
+        active_functs, active_threads;
+    int recycled_comps, recycled_pins, recycled_params, recycled_aliases, recycled_sigs,
+        recycled_functs, recycled_threads;
+} hal_q_status_t;
+int hal_q_status(hal_q_status_t *out);
 
 /* Value text <-> value, with halcmd's rules (bit: 1/0/TRUE/FALSE any case;
  * numbers: C syntax incl. 0x; out-of-range integers are rejected with

@@ -3,7 +3,8 @@
  * hal_priv.h - the layout of the HAL shared-memory segment and the internal
  * interface between libhal, rtapi_app and halcmd.  Not for components.
  *
- * The segment starts with a hal_hdr_t.  Everything inside is linked by
+ * (Tools such as halcmd use only hal_session.h and hal_query.h, never this
+ * layout.)  The segment starts with a hal_hdr_t.  Everything inside is linked by
  * offsets from the segment base (hal_off_t, 0 = none), because every process
  * maps the segment at a different address.  Objects (components, pins,
  * parameters, signals, functions, threads, ...) are carved from the bottom
@@ -19,6 +20,7 @@
 #include <sys/types.h>
 
 #include "hal.h"
+#include "hal_session.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -170,61 +172,8 @@ extern hal_hdr_t *hal_hdr;
     (hal_shmem_base != NULL && (char *)(ptr) > hal_shmem_base + hal_hdr->hdr_size && \
      (char *)(ptr) < hal_shmem_base + hal_hdr->size)
 
-/* Attach to (creating if needed) this session's segment.  0 or -errno. */
-int hal_priv_attach(void);
-/* Unmap the segment (after hal_priv_session_release). */
-void hal_priv_detach(void);
-/* Segment name of the session (depends on HAL_INSTANCE and HAL_OWNER). */
-const char *hal_priv_shm_name(void);
-const char *hal_priv_instance(void);
-/* The session's owner (HAL_OWNER or our uid) and HAL_GROUP's gid (-1
- * unset, -2 no such group). */
-uid_t hal_priv_owner_uid(void);
-long hal_priv_group_gid(void);
-/* Give fd mode 0600, or 0660 and group gid when gid >= 0. */
-int hal_priv_set_access(int fd, long gid, const char *what);
-/* Abstract unix-socket name of the session's rtapi_app. */
-void hal_priv_socket_name(char *buf, size_t len);
-
-/* ---- sessions (hal_session.c) ---------------------------------------------- */
-
-enum {
-    HAL_SESSION_NONE = 0,    /* no segment */
-    HAL_SESSION_RUNNING = 1, /* rtapi_app or a user component lives */
-    HAL_SESSION_STALE = 2,   /* left by a crash: a process died inside it */
-    HAL_SESSION_IDLE = 3,    /* no process, no crash (signals made by halcmd) */
-};
-int hal_priv_session_state(void);
-/* 1 when the process exists and is not a zombie. */
-int hal_priv_pid_alive(int pid);
-/* Our start time as rtapi_app records it. */
-unsigned long long hal_priv_self_start_time(void);
-/* pid of the session's live rtapi_app (0: none), without attaching. */
-int hal_priv_session_rtapi_pid(void);
-/* 1 when realtime components are listed but their rtapi_app is gone
- * (killed, crashed); *pid gets its last pid.  Needs the segment attached. */
-int hal_priv_rt_lost(int *pid);
-/* Terminate the session's rtapi_app and user components (halrun -U). */
-void hal_priv_session_kill(void);
-/* Remove the session's segment, rtapi shmem blocks and log (halrun -U,
- * end of halrun). */
-int hal_priv_session_destroy(void);
-/* Called by a halcmd leaving the session: when nothing is left in it (no
- * component, process, signal, thread or lock), remove it and detach.
- * Returns 1 when removed. */
-int hal_priv_session_release(void);
-/* The private runtime directory ($XDG_RUNTIME_DIR/hm2hal or
- * /tmp/hm2hal-UID, mode 0700, checked: ours, not a link), created when
- * `create`.  0 or -errno. */
-int hal_priv_runtime_dir(char *buf, size_t len, int create);
-/* Open (create, append) rtapi_app's log in the runtime directory, safely;
- * fd or -errno; the path is stored in `path`. */
-int hal_priv_open_log(char *path, size_t len);
-
 void hal_priv_lock(void);
 void hal_priv_unlock(void);
-/* Release the mutex whoever holds it (halcmd -R, crash recovery). */
-void hal_priv_force_unlock(void);
 
 /* Marks this process as rtapi_app: components become realtime. */
 void hal_priv_set_realtime_host(int yes);
@@ -258,9 +207,7 @@ hal_thread_t *halpr_find_thread_by_name(const char *name);
 hal_data_u *halpr_pin_value(hal_pin_t *pin);
 void *halpr_param_value(hal_param_t *param);
 hal_data_u *halpr_sig_value(hal_sig_t *sig);
-/* Remove a component and everything it owns (mutex NOT held). */
-int halpr_comp_delete(int comp_id);
-/* Next component id; mimics LinuxCNC's id sequence (see hal_lib.c). */
+/* Next component id (caller holds the mutex). */
 int halpr_next_id(void);
 /* hal_link's checks against given writer/bidir counts (halcmd net dry run). */
 int halpr_check_link(hal_pin_t *pin, hal_sig_t *sig, int writers, int bidirs, int quiet);

@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
- * hal_query.c - introspection and modification by name (hal_query.h).
+ * hal_query.c - introspection by name (hal_query.h): lookups, snapshots
+ * of every object of a kind, names, memory and lock status.  Values by
+ * name are in hal_q_values.c.
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -12,14 +14,8 @@
 #include <string.h>
 #include <strings.h>
 
-#include "hal_priv.h"
+#include "hal_lib_int.h"
 #include "hal_query.h"
-
-#define SETERR(...)                                   \
-    do {                                              \
-        if (err != NULL && errlen > 0)                \
-            snprintf(err, errlen, __VA_ARGS__);       \
-    } while (0)
 
 int hal_q_attach(void) { return hal_priv_attach(); }
 
@@ -30,144 +26,6 @@ int hal_q_match(const char *pattern, const char *name)
     if (strncmp(pattern, name, strlen(pattern)) == 0)
         return 1;
     return fnmatch(pattern, name, 0) == 0;
-}
-
-hal_type_t hal_q_type_from_name(const char *name)
-{
-    static const struct {
-        const char *n;
-        hal_type_t t;
-    } tab[] = {{"bit", HAL_BIT}, {"float", HAL_FLOAT}, {"s32", HAL_S32},
-               {"u32", HAL_U32}, {"s64", HAL_S64},     {"u64", HAL_U64}};
-    for (size_t i = 0; i < sizeof(tab) / sizeof(tab[0]); i++)
-        if (name != NULL && strcmp(name, tab[i].n) == 0)
-            return tab[i].t;
-    return HAL_TYPE_UNSPECIFIED;
-}
-
-int hal_q_parse_value(hal_type_t type, const char *text, hal_data_u *out)
-{
-    char *end;
-    hal_data_u v;
-    memset(&v, 0, sizeof(v));
-    if (text == NULL || text[0] == '\0')
-        return -EINVAL;
-    errno = 0;
-    switch (type) {
-    case HAL_BIT:
-        if (strcmp(text, "1") == 0 || strcasecmp(text, "TRUE") == 0)
-            v.b = 1;
-        else if (strcmp(text, "0") == 0 || strcasecmp(text, "FALSE") == 0)
-            v.b = 0;
-        else
-            return -EINVAL;
-        break;
-    case HAL_FLOAT: {
-        double d = strtod(text, &end);
-        if (*end != '\0' || end == text)
-            return -EINVAL;
-        if (errno == ERANGE && isinf(d))
-            return -ERANGE;
-        v.f = d;
-        break;
-    }
-    case HAL_S32: {
-        long long x = strtoll(text, &end, 0);
-        if (*end != '\0' || end == text)
-            return -EINVAL;
-        if (errno == ERANGE || x < INT32_MIN || x > INT32_MAX)
-            return -ERANGE;
-        v.s = (rtapi_s32)x;
-        break;
-    }
-    case HAL_U32: {
-        const char *p = text;
-        while (*p == ' ')
-            p++;
-        if (*p == '-') {
-            /* strtoull accepts "-1"; a negative number is out of range. */
-            strtoll(text, &end, 0);
-            return (*end != '\0' || end == text) ? -EINVAL : -ERANGE;
-        }
-        unsigned long long x = strtoull(text, &end, 0);
-        if (*end != '\0' || end == text)
-            return -EINVAL;
-        if (errno == ERANGE || x > UINT32_MAX)
-            return -ERANGE;
-        v.u = (rtapi_u32)x;
-        break;
-    }
-    case HAL_S64: {
-        long long x = strtoll(text, &end, 0);
-        if (*end != '\0' || end == text)
-            return -EINVAL;
-        if (errno == ERANGE)
-            return -ERANGE;
-        v.ls = x;
-        break;
-    }
-    case HAL_U64: {
-        const char *p = text;
-        while (*p == ' ')
-            p++;
-        if (*p == '-') {
-            strtoll(text, &end, 0);
-            return (*end != '\0' || end == text) ? -EINVAL : -ERANGE;
-        }
-        unsigned long long x = strtoull(text, &end, 0);
-        if (*end != '\0' || end == text)
-            return -EINVAL;
-        if (errno == ERANGE)
-            return -ERANGE;
-        v.lu = x;
-        break;
-    }
-    default:
-        return -EINVAL;
-    }
-    if (out != NULL)
-        *out = v;
-    return 0;
-}
-
-int hal_q_format_value(hal_type_t type, const hal_data_u *v, char *buf, size_t len)
-{
-    switch (type) {
-    case HAL_BIT: return snprintf(buf, len, "%s", v->b ? "TRUE" : "FALSE");
-    case HAL_FLOAT: return snprintf(buf, len, "%.7g", (double)v->f);
-    case HAL_S32: return snprintf(buf, len, "%ld", (long)v->s);
-    case HAL_U32: return snprintf(buf, len, "%lu", (unsigned long)v->u);
-    case HAL_S64: return snprintf(buf, len, "%" PRId64, (int64_t)v->ls);
-    case HAL_U64: return snprintf(buf, len, "%" PRIu64, (uint64_t)v->lu);
-    default: return snprintf(buf, len, "unknown_type");
-    }
-}
-
-static void read_typed(hal_type_t type, const volatile void *src, hal_data_u *out)
-{
-    memset(out, 0, sizeof(*out));
-    switch (type) {
-    case HAL_BIT: out->b = *(const volatile hal_bit_t *)src; break;
-    case HAL_FLOAT: out->f = *(const volatile hal_float_t *)src; break;
-    case HAL_S32: out->s = *(const volatile hal_s32_t *)src; break;
-    case HAL_U32: out->u = *(const volatile hal_u32_t *)src; break;
-    case HAL_S64: out->ls = *(const volatile hal_s64_t *)src; break;
-    case HAL_U64: out->lu = *(const volatile hal_u64_t *)src; break;
-    default: break;
-    }
-}
-
-static void write_typed(hal_type_t type, volatile void *dst, const hal_data_u *in)
-{
-    switch (type) {
-    case HAL_BIT: *(volatile hal_bit_t *)dst = in->b; break;
-    case HAL_FLOAT: *(volatile hal_float_t *)dst = in->f; break;
-    case HAL_S32: *(volatile hal_s32_t *)dst = in->s; break;
-    case HAL_U32: *(volatile hal_u32_t *)dst = in->u; break;
-    case HAL_S64: *(volatile hal_s64_t *)dst = in->ls; break;
-    case HAL_U64: *(volatile hal_u64_t *)dst = in->lu; break;
-    default: break;
-    }
 }
 
 static void fill_pin(hal_pin_t *p, hal_q_pin_t *out)
@@ -271,24 +129,46 @@ int hal_q_comp(const char *name, hal_q_comp_t *out)
     return c ? 0 : -ENOENT;
 }
 
+static void fill_funct(hal_funct_t *f, hal_q_funct_t *out)
+{
+    memset(out, 0, sizeof(*out));
+    snprintf(out->name, sizeof(out->name), "%s", f->name);
+    hal_comp_t *c = SHMPTR(f->owner);
+    out->owner_id = c->id;
+    snprintf(out->owner, sizeof(out->owner), "%s", c->name);
+    out->uses_fp = f->uses_fp;
+    out->reentrant = f->reentrant;
+    out->users = f->users;
+    out->code_addr = f->funct;
+    out->arg = f->arg;
+}
+
 int hal_q_funct(const char *name, hal_q_funct_t *out)
 {
     if (name == NULL || hal_priv_attach() != 0)
         return -EINVAL;
     hal_priv_lock();
     hal_funct_t *f = halpr_find_funct_by_name(name);
-    if (f != NULL && out != NULL) {
-        memset(out, 0, sizeof(*out));
-        snprintf(out->name, sizeof(out->name), "%s", f->name);
-        out->owner_id = ((hal_comp_t *)SHMPTR(f->owner))->id;
-        out->uses_fp = f->uses_fp;
-        out->reentrant = f->reentrant;
-        out->users = f->users;
-        out->code_addr = f->funct;
-        out->arg = f->arg;
-    }
+    if (f != NULL && out != NULL)
+        fill_funct(f, out);
     hal_priv_unlock();
     return f ? 0 : -ENOENT;
+}
+
+static void fill_thread(hal_thread_t *t, hal_q_thread_t *out)
+{
+    memset(out, 0, sizeof(*out));
+    snprintf(out->name, sizeof(out->name), "%s", t->name);
+    out->period = t->period;
+    out->uses_fp = t->uses_fp;
+    out->comp_id = t->comp_id;
+    for (hal_off_t off = t->funct_list; off; off = ((hal_funct_entry_t *)SHMPTR(off))->next)
+        out->nfuncts++;
+    char pname[HAL_NAME_LEN + 8];
+    snprintf(pname, sizeof(pname), "%s.time", t->name);
+    hal_pin_t *p = halpr_find_pin_by_name(pname);
+    out->runtime = p ? (long)halpr_pin_value(p)->s : 0;
+    out->maxtime = *(hal_s32_t *)SHMPTR(t->maxtime);
 }
 
 int hal_q_thread(const char *name, hal_q_thread_t *out)
@@ -297,20 +177,8 @@ int hal_q_thread(const char *name, hal_q_thread_t *out)
         return -EINVAL;
     hal_priv_lock();
     hal_thread_t *t = halpr_find_thread_by_name(name);
-    if (t != NULL && out != NULL) {
-        memset(out, 0, sizeof(*out));
-        snprintf(out->name, sizeof(out->name), "%s", t->name);
-        out->period = t->period;
-        out->uses_fp = t->uses_fp;
-        out->comp_id = t->comp_id;
-        for (hal_off_t off = t->funct_list; off; off = ((hal_funct_entry_t *)SHMPTR(off))->next)
-            out->nfuncts++;
-        char pname[HAL_NAME_LEN + 8];
-        snprintf(pname, sizeof(pname), "%s.time", t->name);
-        hal_pin_t *p = halpr_find_pin_by_name(pname);
-        out->runtime = p ? (long)halpr_pin_value(p)->s : 0;
-        out->maxtime = *(hal_s32_t *)SHMPTR(t->maxtime);
-    }
+    if (t != NULL && out != NULL)
+        fill_thread(t, out);
     hal_priv_unlock();
     return t ? 0 : -ENOENT;
 }
@@ -420,145 +288,6 @@ int hal_q_foreach(hal_q_kind_t kind, const char *pattern, hal_q_name_cb cb, void
     return (int)i;
 }
 
-static const char *type_upper(hal_type_t t)
-{
-    switch (t) {
-    case HAL_BIT: return "bit";
-    case HAL_FLOAT: return "float";
-    case HAL_S32: return "S32";
-    case HAL_U32: return "U32";
-    case HAL_S64: return "S64";
-    case HAL_U64: return "U64";
-    default: return "unknown";
-    }
-}
-
-static int value_error(int rc, hal_type_t type, const char *value, char *err, size_t errlen)
-{
-    if (rc == -ERANGE)
-        SETERR("value '%s' out of range for %s", value, type_upper(type));
-    else
-        SETERR("value '%s' invalid for %s", value, type_upper(type));
-    return rc;
-}
-
-int hal_q_getp(const char *name, char *buf, size_t len, hal_type_t *type, char *err,
-               size_t errlen)
-{
-    if (name == NULL || hal_priv_attach() != 0)
-        return -EINVAL;
-    hal_data_u v;
-    hal_type_t t;
-    hal_priv_lock();
-    hal_param_t *pa = halpr_find_param_by_name(name);
-    hal_pin_t *pi = pa ? NULL : halpr_find_pin_by_name(name);
-    if (pa != NULL) {
-        t = pa->type;
-        read_typed(t, halpr_param_value(pa), &v);
-    } else if (pi != NULL) {
-        t = pi->type;
-        read_typed(t, halpr_pin_value(pi), &v);
-    }
-    hal_priv_unlock();
-    if (pa == NULL && pi == NULL) {
-        SETERR("pin or parameter '%s' not found", name);
-        return -ENOENT;
-    }
-    if (type)
-        *type = t;
-    if (buf)
-        hal_q_format_value(t, &v, buf, len);
-    return 0;
-}
-
-int hal_q_setp(const char *name, const char *value, char *err, size_t errlen)
-{
-    if (name == NULL || value == NULL || hal_priv_attach() != 0)
-        return -EINVAL;
-    hal_priv_lock();
-    int rc = 0;
-    hal_data_u v;
-    hal_param_t *pa = halpr_find_param_by_name(name);
-    if (pa != NULL) {
-        /* Like LinuxCNC's halcmd, setp is not subject to the HAL lock. */
-        if (pa->dir == HAL_RO) {
-            SETERR("param '%s' is not writable", name);
-            rc = -EPERM;
-        } else if ((rc = hal_q_parse_value(pa->type, value, &v)) != 0) {
-            value_error(rc, pa->type, value, err, errlen);
-        } else {
-            write_typed(pa->type, halpr_param_value(pa), &v);
-        }
-        hal_priv_unlock();
-        return rc;
-    }
-    hal_pin_t *pi = halpr_find_pin_by_name(name);
-    if (pi == NULL) {
-        SETERR("parameter or pin '%s' not found", name);
-        rc = -ENOENT;
-    } else if (pi->dir == HAL_OUT) {
-        SETERR("pin '%s' is not writable", name);
-        rc = -EPERM;
-    } else if (pi->signal != 0) {
-        SETERR("pin '%s' is connected to a signal", name);
-        rc = -EPERM;
-    } else if ((rc = hal_q_parse_value(pi->type, value, &v)) != 0) {
-        value_error(rc, pi->type, value, err, errlen);
-    } else {
-        write_typed(pi->type, &pi->dummysig, &v);
-    }
-    hal_priv_unlock();
-    return rc;
-}
-
-int hal_q_gets(const char *name, char *buf, size_t len, hal_type_t *type, char *err,
-               size_t errlen)
-{
-    if (name == NULL || hal_priv_attach() != 0)
-        return -EINVAL;
-    hal_priv_lock();
-    hal_sig_t *s = halpr_find_sig_by_name(name);
-    hal_data_u v;
-    hal_type_t t = HAL_TYPE_UNSPECIFIED;
-    if (s != NULL) {
-        t = s->type;
-        read_typed(t, halpr_sig_value(s), &v);
-    }
-    hal_priv_unlock();
-    if (s == NULL) {
-        SETERR("signal '%s' not found", name);
-        return -ENOENT;
-    }
-    if (type)
-        *type = t;
-    if (buf)
-        hal_q_format_value(t, &v, buf, len);
-    return 0;
-}
-
-int hal_q_sets(const char *name, const char *value, char *err, size_t errlen)
-{
-    if (name == NULL || value == NULL || hal_priv_attach() != 0)
-        return -EINVAL;
-    hal_priv_lock();
-    int rc = 0;
-    hal_data_u v;
-    hal_sig_t *s = halpr_find_sig_by_name(name);
-    if (s == NULL) {
-        SETERR("signal '%s' not found", name);
-        rc = -ENOENT;
-    } else if (s->writers > 0) {
-        SETERR("signal '%s' already has writer(s)", name);
-        rc = -EPERM;
-    } else if ((rc = hal_q_parse_value(s->type, value, &v)) != 0) {
-        value_error(rc, s->type, value, err, errlen);
-    } else {
-        write_typed(s->type, halpr_sig_value(s), &v);
-    }
-    hal_priv_unlock();
-    return rc;
-}
-
 int hal_q_pin_has_writer(const char *name)
 {
     if (name == NULL || hal_priv_attach() != 0)
@@ -610,4 +339,100 @@ long long hal_q_time(void)
 {
     hal_priv_attach();
     return rtapi_get_time();
+}
+
+/* ---- snapshots ---------------------------------------------------------------- */
+
+typedef void (*fill_fn)(void *obj, void *out);
+
+static void fill_comp_v(void *o, void *out) { fill_comp(o, out); }
+static void fill_pin_v(void *o, void *out) { fill_pin(o, out); }
+static void fill_param_v(void *o, void *out) { fill_param(o, out); }
+static void fill_funct_v(void *o, void *out) { fill_funct(o, out); }
+static void fill_thread_v(void *o, void *out) { fill_thread(o, out); }
+static void fill_sig_v(void *o, void *out)
+{
+    hal_sig_t *s = o;
+    hal_q_sig_t *q = out;
+    memset(q, 0, sizeof(*q));
+    snprintf(q->name, sizeof(q->name), "%s", s->name);
+    q->type = s->type;
+    q->readers = s->readers;
+    q->writers = s->writers;
+    q->bidirs = s->bidirs;
+    read_typed(s->type, halpr_sig_value(s), &q->value);
+}
+
+/* Copy every object of the list starting at *head (each object starts
+ * with its `next` offset) into a malloc'd array of `size`-byte records. */
+static int snapshot(const hal_off_t *head, size_t size, fill_fn fill, char **out)
+{
+    *out = NULL;
+    if (hal_priv_attach() != 0)
+        return -EINVAL;
+    hal_priv_lock();
+    size_t n = 0;
+    for (hal_off_t off = *head; off != 0; off = *(hal_off_t *)SHMPTR(off))
+        n++;
+    char *v = malloc(n ? n * size : 1);
+    if (v == NULL) {
+        hal_priv_unlock();
+        return -ENOMEM;
+    }
+    size_t i = 0;
+    for (hal_off_t off = *head; off != 0 && i < n; off = *(hal_off_t *)SHMPTR(off))
+        fill(SHMPTR(off), v + size * i++);
+    hal_priv_unlock();
+    *out = v;
+    return (int)i;
+}
+
+#define EACH(fn, head, qtype, cbtype, filler)                                            \
+    int fn(cbtype cb, void *ctx)                                                         \
+    {                                                                                    \
+        if (hal_priv_attach() != 0)                                                      \
+            return -EINVAL;                                                              \
+        char *v;                                                                         \
+        int n = snapshot(&hal_hdr->head, sizeof(qtype), filler, &v);                     \
+        if (n < 0)                                                                       \
+            return n;                                                                    \
+        int i = 0;                                                                       \
+        while (i < n && (cb == NULL || cb((const qtype *)(v + sizeof(qtype) * (size_t)i), \
+                                          ctx) == 0))                                    \
+            i++;                                                                         \
+        free(v);                                                                         \
+        return i < n ? i + 1 : n;                                                        \
+    }
+EACH(hal_q_each_comp, comp_list, hal_q_comp_t, hal_q_comp_cb, fill_comp_v)
+EACH(hal_q_each_pin, pin_list, hal_q_pin_t, hal_q_pin_cb, fill_pin_v)
+EACH(hal_q_each_param, param_list, hal_q_pin_t, hal_q_pin_cb, fill_param_v)
+EACH(hal_q_each_sig, sig_list, hal_q_sig_t, hal_q_sig_cb, fill_sig_v)
+EACH(hal_q_each_funct, funct_list, hal_q_funct_t, hal_q_funct_cb, fill_funct_v)
+EACH(hal_q_each_thread, thread_list, hal_q_thread_t, hal_q_thread_cb, fill_thread_v)
+
+int hal_q_status(hal_q_status_t *out)
+{
+    if (out == NULL || hal_priv_attach() != 0)
+        return -EINVAL;
+    hal_priv_lock();
+    const hal_hdr_t *h = hal_hdr;
+    out->lock = h->lock;
+    out->shmem_total = (long)h->size;
+    out->shmem_used = (long)(h->size - (h->top - h->bot));
+    out->active_comps = h->active_comps;
+    out->active_pins = h->active_pins;
+    out->active_params = h->active_params;
+    out->active_aliases = h->active_aliases;
+    out->active_sigs = h->active_sigs;
+    out->active_functs = h->active_functs;
+    out->active_threads = h->active_threads;
+    out->recycled_comps = h->recycled_comps;
+    out->recycled_pins = h->recycled_pins;
+    out->recycled_params = h->recycled_params;
+    out->recycled_aliases = h->recycled_aliases;
+    out->recycled_sigs = h->recycled_sigs;
+    out->recycled_functs = h->recycled_functs;
+    out->recycled_threads = h->recycled_threads;
+    hal_priv_unlock();
+    return 0;
 }

@@ -387,6 +387,12 @@ static void test_memory(void)
     void *a = hal_malloc(3), *b = hal_malloc(8);
     CHECK(a != NULL && b != NULL);
     CHECK(((uintptr_t)b & 7) == 0);
+    /* blocks of 16 bytes or more are aligned for any type, as malloc's */
+    for (long n = 16; n <= 40; n += 8) {
+        void *c = hal_malloc(n);
+        CHECK(c != NULL && ((uintptr_t)c & 15) == 0);
+        hal_malloc(3);
+    }
     unsigned long off = hal_q_shm_offset(b);
     CHECK(off != 0);
     CHECK(hal_q_shm_ptr(off) == b);
