@@ -8,8 +8,8 @@
 #include <stdio.h>
 
 #include "hal.h"
-#include "hal_priv.h"
 #include "hal_query.h"
+#include "hal_session.h"
 
 typedef struct {
     int keep_going;  /* -k */
@@ -44,7 +44,54 @@ int halcmd_run_file(const char *path, FILE *f);
  * loops, and nesting deeper than 16 files. */
 int halcmd_source(const char *path, int top);
 
-/* show/list/save/status (halcmd_show.c) */
+/* Messages of realtime modules as rtapi_app captured them (halcmd_run.c). */
+void print_rt_messages(const char *msgs);
+
+/* Commands: each gets the tokens of its line (argv[0] = command name) with
+ * the argument count already checked against the command table; 0 on
+ * success, -errno otherwise, after printing what failed and why. */
+/* halcmd_run.c */
+int do_source_cmd(int argc, char **argv);
+int do_echo_cmd(int argc, char **argv);
+int do_unecho_cmd(int argc, char **argv);
+int do_quit_cmd(int argc, char **argv);
+int do_debug_cmd(int argc, char **argv);
+int do_print_cmd(int argc, char **argv);
+/* halcmd_rt.c */
+int do_loadrt_cmd(int argc, char **argv);
+int do_unloadrt_cmd(int argc, char **argv);
+int do_simrun_cmd(int argc, char **argv);
+int unloadrt_all(void);
+/* halcmd_usr.c */
+int do_loadusr_cmd(int argc, char **argv);
+int do_waitusr_cmd(int argc, char **argv);
+int do_unloadusr_cmd(int argc, char **argv);
+int do_unload_cmd(int argc, char **argv);
+/* halcmd_net.c */
+int do_net_cmd(int argc, char **argv);
+int do_newsig_cmd(int argc, char **argv);
+int do_delsig_cmd(int argc, char **argv);
+int do_linkps_cmd(int argc, char **argv);
+int do_linksp_cmd(int argc, char **argv);
+int do_linkpp_cmd(int argc, char **argv);
+int do_unlinkp_cmd(int argc, char **argv);
+int do_alias_cmd(int argc, char **argv);
+int do_unalias_cmd(int argc, char **argv);
+/* halcmd_cmds.c */
+int do_setp_cmd(int argc, char **argv);
+int do_getp_cmd(int argc, char **argv);
+int do_ptype_cmd(int argc, char **argv);
+int do_sets_cmd(int argc, char **argv);
+int do_gets_cmd(int argc, char **argv);
+int do_stype_cmd(int argc, char **argv);
+int do_addf_cmd(int argc, char **argv);
+int do_delf_cmd(int argc, char **argv);
+int do_start_cmd(int argc, char **argv);
+int do_stop_cmd(int argc, char **argv);
+int do_lock_cmd(int argc, char **argv);
+int do_unlock_cmd(int argc, char **argv);
+int do_setexact_cmd(int argc, char **argv);
+/* halcmd_show.c: show, list; halcmd_save.c: save, status */
 int do_show_cmd(int argc, char **argv);
 int do_list_cmd(int argc, char **argv);
 int do_save_cmd(int argc, char **argv);

@@ -316,7 +316,7 @@ int main(int argc, char **argv)
         return 1;
     }
     const char *want_sim = getenv("HAL_SIMCLOCK");
-    if (want_sim && *want_sim && strcmp(want_sim, "0") != 0 && !hal_hdr->simclock) {
+    if (want_sim && *want_sim && strcmp(want_sim, "0") != 0 && !hal_q_simclock()) {
         fprintf(stderr, "halcmd: HAL session %s already runs on the wall clock; "
                         "cannot switch it to the simulated clock\n",
                 hal_priv_instance());

@@ -18,7 +18,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "hal_priv.h"
+#include "hal_session.h"
 #include "rtapi_proto.h"
 
 static int try_connect(void)
