@@ -28,26 +28,7 @@
 #include <unistd.h>
 
 #include "hal.h"
-#include "halstream.h"
-
-static volatile sig_atomic_t stop_requested;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    stop_requested = 1;
-}
-
-static int parse_int(const char *s, long min, long max, long *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno != 0 || end == s || *end != '\0' || v < min || v > max)
-        return -1;
-    *out = v;
-    return 0;
-}
+#include "halstream_tool.h"
 
 static void print_value(FILE *f, hal_type_t t, const halstream_value_t *v)
 {
@@ -76,137 +57,63 @@ static void print_value(FILE *f, hal_type_t t, const halstream_value_t *v)
     }
 }
 
-static void nap(long ns)
-{
-    struct timespec ts = {0, ns};
-    nanosleep(&ts, NULL);
-}
-
 int main(int argc, char **argv)
 {
-    long chan = 0, count = -1;
-    int tag = 0;
-    const char *filename = NULL, *name = NULL;
-    char err[256], compname[HAL_NAME_LEN + 1];
-
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (a[0] == '-' && a[1] != '\0') {
-            char opt = a[1];
-            const char *val = NULL;
-            if (opt == 'c' || opt == 'n' || opt == 'N') {
-                if (a[2] != '\0')
-                    val = a + 2;
-                else if (i + 1 < argc)
-                    val = argv[++i];
-                else {
-                    fprintf(stderr, "ERROR: option '%c' needs a value\n", opt);
-                    return 1;
-                }
-            } else if (opt == 't' && a[2] == '\0') {
-                tag = 1;
-                continue;
-            } else {
-                fprintf(stderr, "ERROR: unknown option '%s'\n", a + 1);
-                return 1;
-            }
-            if (opt == 'c' && parse_int(val, 0, HALSTREAM_MAX_CHAN - 1, &chan) != 0) {
-                fprintf(stderr, "ERROR: invalid channel number '%s'\n", val);
-                return 1;
-            }
-            if (opt == 'n' && parse_int(val, 0, 0x7fffffffL, &count) != 0) {
-                fprintf(stderr, "ERROR: invalid sample count '%s'\n", val);
-                return 1;
-            }
-            if (opt == 'N') {
-                if (val[0] == '\0' || strlen(val) > HAL_NAME_LEN) {
-                    fprintf(stderr, "ERROR: invalid component name '%s' (1 to %d characters)\n",
-                            val, HAL_NAME_LEN);
-                    return 1;
-                }
-                name = val;
-            }
-        } else {
-            if (filename != NULL) {
-                fprintf(stderr, "ERROR: At most one filename may be specified\n");
-                return 1;
-            }
-            filename = a;
-        }
-    }
-    if (count == 0)
+    hs_tool_t t;
+    if (hs_tool_args(&t, "halsampler", "sampler", argc, argv, 1) != 0)
+        return 1;
+    if (t.count == 0)
         return 0;
-
     FILE *out = stdout;
-    if (filename != NULL) {
-        out = fopen(filename, "w");
+    if (t.filename != NULL) {
+        out = fopen(t.filename, "w");
         if (out == NULL) {
-            fprintf(stderr, "halsampler: ERROR: cannot open output file '%s': %s\n", filename,
+            fprintf(stderr, "halsampler: ERROR: cannot open output file '%s': %s\n", t.filename,
                     strerror(errno));
             return 1;
         }
     }
-    if (name == NULL) {
-        snprintf(compname, sizeof(compname), "halsampler%d", (int)getpid());
-        name = compname;
-    }
-    int comp_id = hal_init(name);
-    if (comp_id < 0) {
-        fprintf(stderr, "ERROR: hal_init() failed: %d\n", comp_id);
+    if (hs_tool_start(&t) != 0) {
+        if (out != stdout)
+            fclose(out);
         return 1;
     }
-    halstream_t fifo;
-    int r = halstream_attach(&fifo, "sampler", (int)chan, err, sizeof(err));
-    if (r < 0) {
-        fprintf(stderr, "halsampler: ERROR: hal_stream_attach: %s\n", err);
-        hal_exit(comp_id);
-        return 1;
-    }
-    struct sigaction sa;
-    memset(&sa, 0, sizeof(sa));
-    sa.sa_handler = on_signal;
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-    hal_ready(comp_id);
-
-    /* Poll: fast under the simulated clock, where the realtime side waits
-     * for us; 1 ms on the wall clock. */
-    long poll_ns = rtapi_is_simclock() ? 50000 : 1000000;
-    int npins = halstream_pin_count(&fifo);
+    long poll_ns = hs_tool_poll_ns();
+    int npins = halstream_pin_count(&t.fifo);
     halstream_value_t vals[HALSTREAM_MAX_PINS];
     rtapi_u32 expected = 0;
+    long count = t.count;
     int status = 1;
-    while (!stop_requested) {
+    while (!hs_stop) {
         rtapi_u32 num;
-        if (halstream_read(&fifo, vals, &num) != 0) {
-            if (halstream_closed(&fifo)) {
-                fprintf(stderr, "halsampler: ERROR: sampler channel %ld was unloaded\n", chan);
+        if (halstream_read(&t.fifo, vals, &num) != 0) {
+            if (halstream_closed(&t.fifo)) {
+                fprintf(stderr, "halsampler: ERROR: sampler channel %ld was unloaded\n", t.chan);
                 break;
             }
             fflush(out);
-            nap(poll_ns);
+            hs_nap(poll_ns);
             continue;
         }
         if (num != expected)
             fputs("overrun\n", out);
         expected = num + 1;
-        if (tag)
+        if (t.tag)
             fprintf(out, "%lu ", (unsigned long)num);
         for (int i = 0; i < npins; i++)
-            print_value(out, halstream_pin_type(&fifo, i), &vals[i]);
+            print_value(out, halstream_pin_type(&t.fifo, i), &vals[i]);
         fputc('\n', out);
         if (count > 0 && --count == 0) {
             status = 0;
             break;
         }
     }
-    halstream_detach(&fifo);
     if (fflush(out) != 0 || ferror(out)) {
         fprintf(stderr, "halsampler: ERROR: writing output failed: %s\n", strerror(errno));
         status = 1;
     }
     if (out != stdout)
         fclose(out);
-    hal_exit(comp_id);
+    hs_tool_end(&t);
     return status;
 }

@@ -31,34 +31,9 @@
 #include <unistd.h>
 
 #include "hal.h"
-#include "halstream.h"
+#include "halstream_tool.h"
 
 #define LINE_MAX_LEN 4096
-
-static volatile sig_atomic_t stop_requested;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    stop_requested = 1;
-}
-
-static int parse_int(const char *s, long min, long max, long *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno != 0 || end == s || *end != '\0' || v < min || v > max)
-        return -1;
-    *out = v;
-    return 0;
-}
-
-static void nap(long ns)
-{
-    struct timespec ts = {0, ns};
-    nanosleep(&ts, NULL);
-}
 
 /* Parse one line into vals; returns NULL or the reason, with *field set. */
 static const char *parse_line(const char *line, const halstream_t *fifo, halstream_value_t *vals,
@@ -109,117 +84,60 @@ static const char *parse_line(const char *line, const halstream_t *fifo, halstre
 
 int main(int argc, char **argv)
 {
-    long chan = 0;
-    const char *filename = NULL, *name = NULL;
-    char err[256], compname[HAL_NAME_LEN + 1];
-
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (a[0] == '-' && a[1] != '\0') {
-            char opt = a[1];
-            const char *val;
-            if (opt != 'c' && opt != 'N') {
-                fprintf(stderr, "ERROR: unknown option '%s'\n", a + 1);
-                return 1;
-            }
-            if (a[2] != '\0')
-                val = a + 2;
-            else if (i + 1 < argc)
-                val = argv[++i];
-            else {
-                fprintf(stderr, "ERROR: option '%c' needs a value\n", opt);
-                return 1;
-            }
-            if (opt == 'c' && parse_int(val, 0, HALSTREAM_MAX_CHAN - 1, &chan) != 0) {
-                fprintf(stderr, "ERROR: invalid channel number '%s'\n", val);
-                return 1;
-            }
-            if (opt == 'N') {
-                if (val[0] == '\0' || strlen(val) > HAL_NAME_LEN) {
-                    fprintf(stderr, "ERROR: invalid component name '%s' (1 to %d characters)\n",
-                            val, HAL_NAME_LEN);
-                    return 1;
-                }
-                name = val;
-            }
-        } else {
-            if (filename != NULL) {
-                fprintf(stderr, "ERROR: At most one filename may be specified\n");
-                return 1;
-            }
-            filename = a;
-        }
-    }
-
+    hs_tool_t t;
+    if (hs_tool_args(&t, "halstreamer", "streamer", argc, argv, 0) != 0)
+        return 1;
     FILE *in = stdin;
-    if (filename != NULL) {
-        in = fopen(filename, "r");
+    if (t.filename != NULL) {
+        in = fopen(t.filename, "r");
         if (in == NULL) {
-            fprintf(stderr, "halstreamer: ERROR: cannot open input file '%s': %s\n", filename,
+            fprintf(stderr, "halstreamer: ERROR: cannot open input file '%s': %s\n", t.filename,
                     strerror(errno));
             return 1;
         }
     }
-    if (name == NULL) {
-        snprintf(compname, sizeof(compname), "halstreamer%d", (int)getpid());
-        name = compname;
-    }
-    int comp_id = hal_init(name);
-    if (comp_id < 0) {
-        fprintf(stderr, "ERROR: hal_init() failed: %d\n", comp_id);
+    if (hs_tool_start(&t) != 0) {
+        if (in != stdin)
+            fclose(in);
         return 1;
     }
-    halstream_t fifo;
-    int r = halstream_attach(&fifo, "streamer", (int)chan, err, sizeof(err));
-    if (r < 0) {
-        fprintf(stderr, "halstreamer: ERROR: hal_stream_attach: %s\n", err);
-        hal_exit(comp_id);
-        return 1;
-    }
-    struct sigaction sa;
-    memset(&sa, 0, sizeof(sa));
-    sa.sa_handler = on_signal;
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-    hal_ready(comp_id);
-
-    long poll_ns = rtapi_is_simclock() ? 50000 : 1000000;
+    long poll_ns = hs_tool_poll_ns();
     halstream_value_t vals[HALSTREAM_MAX_PINS];
     char line[LINE_MAX_LEN];
     int lineno = -1;
     int status = 0;
-    while (!stop_requested) {
+    while (!hs_stop) {
         if (fgets(line, sizeof(line), in) == NULL)
             break;
         lineno++;
         if (line[0] == '#')
             continue;
         int field = 0;
-        const char *why = parse_line(line, &fifo, vals, &field);
+        const char *why = parse_line(line, &t.fifo, vals, &field);
         if (why != NULL) {
             fprintf(stderr, "line %d, field %d: %s, skipping the line\n", lineno, field, why);
             continue;
         }
-        while (halstream_write(&fifo, vals, 0) != 0) {
-            if (stop_requested)
+        while (halstream_write(&t.fifo, vals, 0) != 0) {
+            if (hs_stop)
                 break;
-            if (halstream_closed(&fifo)) {
-                fprintf(stderr, "halstreamer: ERROR: streamer channel %ld was unloaded\n", chan);
-                stop_requested = 1;
+            if (halstream_closed(&t.fifo)) {
+                fprintf(stderr, "halstreamer: ERROR: streamer channel %ld was unloaded\n",
+                        t.chan);
+                hs_stop = 1;
                 break;
             }
-            nap(poll_ns);
+            hs_nap(poll_ns);
         }
     }
-    if (stop_requested)
+    if (hs_stop)
         status = 1;
     else if (ferror(in)) {
         fprintf(stderr, "halstreamer: ERROR: reading input failed: %s\n", strerror(errno));
         status = 1;
     }
-    halstream_detach(&fifo);
     if (in != stdin)
         fclose(in);
-    hal_exit(comp_id);
+    hs_tool_end(&t);
     return status;
 }
