@@ -7,6 +7,7 @@ replayed first, then the fuzzer runs for HM_FUZZ_SECONDS (5 s in `make test`,
 longer in `make fuzz`) on a copy of the corpus, so new inputs never land in
 the tree.  A crash input is copied to tests/fuzz/crashes/ for inspection.
 """
+
 from __future__ import annotations
 
 import os

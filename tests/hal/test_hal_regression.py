@@ -18,6 +18,7 @@ with $HM_BUILD/bin first, HAL_RTLIB_PATH including lib/rtlib-test (the
 test-only component hm_testmod).  After each test the instance is cleaned
 with ``halrun -U`` so a failing test leaves nothing behind.
 """
+
 from __future__ import annotations
 
 import os
@@ -51,8 +52,15 @@ def hal_env(instance: str) -> dict[str, str]:
     env["PATH"] = f"{BUILD / 'bin'}:{env.get('PATH', '')}"
     env["HAL_RTLIB_PATH"] = f"{BUILD / 'lib' / 'rtlib-test'}:{BUILD / 'lib' / 'rtlib'}"
     env.pop("HAL_RTLIB_DIR", None)
-    for var in ("HAL_SIMCLOCK", "RTAPI_MSG_LEVEL", "HAL_HALRUN", "HAL_RTAPI_STDIO", "HAL_GROUP",
-                "HAL_OWNER", "HAL_TIMING_EVERY"):
+    for var in (
+        "HAL_SIMCLOCK",
+        "RTAPI_MSG_LEVEL",
+        "HAL_HALRUN",
+        "HAL_RTAPI_STDIO",
+        "HAL_GROUP",
+        "HAL_OWNER",
+        "HAL_TIMING_EVERY",
+    ):
         env.pop(var, None)
     return env
 
@@ -91,9 +99,7 @@ def test_hal(case: Path, tmp_path: Path) -> None:
             want = normalize((case / "expected").read_text())
             assert got == want, f"stdout differs\n--- stderr:\n{proc.stderr}"
             if (case / "expected.stderr").exists():
-                assert normalize(proc.stderr) == normalize(
-                    (case / "expected.stderr").read_text()
-                )
+                assert normalize(proc.stderr) == normalize((case / "expected.stderr").read_text())
             assert proc.returncode == want_rc, proc.stderr
         else:
             result = tmp_path / "result"

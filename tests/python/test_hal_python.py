@@ -7,6 +7,7 @@ userspace component uses it.  The reference is LinuxCNC 2.9's module:
 data/probe_api.linuxcnc.out was captured from it (see README); where we
 deliberately differ the test says so and docs/hal-python.md documents it.
 """
+
 from __future__ import annotations
 
 import os
@@ -35,27 +36,37 @@ def _sanitizer_env() -> dict[str, str]:
     if ext is None:
         return {}
     ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True).stdout
-    libs = [line.split("=>")[1].split()[0] for line in ldd.splitlines()
-            if "=>" in line and ("libasan" in line or "libubsan" in line)]
+    libs = [
+        line.split("=>")[1].split()[0]
+        for line in ldd.splitlines()
+        if "=>" in line and ("libasan" in line or "libubsan" in line)
+    ]
     if not libs:
         return {}
     return {"LD_PRELOAD": " ".join(libs), "ASAN_OPTIONS": "detect_leaks=0"}
 
 
-def run_session(tmp_path: Path, hal_text: str, files: dict[str, str] | None = None,
-                timeout: float = 60) -> subprocess.CompletedProcess[str]:
+def run_session(
+    tmp_path: Path, hal_text: str, files: dict[str, str] | None = None, timeout: float = 60
+) -> subprocess.CompletedProcess[str]:
     """Run `halrun -f test.hal` in tmp_path with a fresh HAL_INSTANCE."""
     for name, text in (files or {}).items():
         (tmp_path / name).write_text(textwrap.dedent(text))
     (tmp_path / "test.hal").write_text(textwrap.dedent(hal_text))
     env = dict(os.environ)
-    env["HAL_INSTANCE"] = "h2py-" + uuid.uuid4().hex[:10]
+    env["HAL_INSTANCE"] = "pyhal-" + uuid.uuid4().hex[:10]
     env["PATH"] = f"{BUILD / 'bin'}:{env.get('PATH', '')}"
     env["PYTHONPATH"] = str(PYDIR)
     env.pop("HAL_SIMCLOCK", None)
     env.update(_sanitizer_env())
-    return subprocess.run([str(HALRUN), "-f", "test.hal"], cwd=tmp_path, env=env, text=True,
-                          capture_output=True, timeout=timeout)
+    return subprocess.run(
+        [str(HALRUN), "-f", "test.hal"],
+        cwd=tmp_path,
+        env=env,
+        text=True,
+        capture_output=True,
+        timeout=timeout,
+    )
 
 
 def py_script(body: str) -> str:
@@ -68,8 +79,11 @@ _ADDR = re.compile(r" at 0x[0-9a-f]+>")
 def normalize_probe(text: str) -> list[str]:
     out = []
     for line in text.splitlines():
-        if line.startswith("HAL: ERROR") or line.startswith("Running with fallback_uid") \
-                or line.startswith("Note: Using POSIX"):
+        if (
+            line.startswith("HAL: ERROR")
+            or line.startswith("Running with fallback_uid")
+            or line.startswith("Note: Using POSIX")
+        ):
             continue  # libhal's/rtapi's own messages, not the module's behaviour
         out.append(_ADDR.sub(" at ADDR>", line))
     return out
@@ -106,7 +120,9 @@ def test_pins_visible_to_halcmd_and_values_flow(tmp_path: Path) -> None:
         except KeyboardInterrupt:
             pass
         """)
-    r = run_session(tmp_path, """
+    r = run_session(
+        tmp_path,
+        """
         loadusr -Wn pyflow python3 flow.py
         show pin pyflow
         net x => pyflow.in
@@ -118,14 +134,16 @@ def test_pins_visible_to_halcmd_and_values_flow(tmp_path: Path) -> None:
         unload pyflow
         loadusr -w sleep 0.2
         show comp pyflow
-        """, {"flow.py": script})
+        """,
+        {"flow.py": script},
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     lines = r.stdout.splitlines()
     assert any(re.search(r"float\s+IN\s+0\s+pyflow\.in$", l) for l in lines), r.stdout
     assert any(re.search(r"float\s+OUT\s+0\s+pyflow\.out$", l) for l in lines), r.stdout
     assert "4.5" in lines, r.stdout  # 1.5 * 3
     assert "7" in lines, r.stdout
-    assert not any("pyflow" in l and "User" in l for l in lines[lines.index("7"):]), r.stdout
+    assert not any("pyflow" in l and "User" in l for l in lines[lines.index("7") :]), r.stdout
 
 
 def test_unload_raises_keyboard_interrupt(tmp_path: Path) -> None:
@@ -143,11 +161,15 @@ def test_unload_raises_keyboard_interrupt(tmp_path: Path) -> None:
             with open("ki.txt", "w") as f:
                 f.write("KeyboardInterrupt\\n")
         """)
-    r = run_session(tmp_path, """
+    r = run_session(
+        tmp_path,
+        """
         loadusr -Wn pyki python3 ki.py
         unload pyki
         loadusr -w sleep 0.3
-        """, {"ki.py": script})
+        """,
+        {"ki.py": script},
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     assert (tmp_path / "ki.txt").read_text() == "KeyboardInterrupt\n"
 
@@ -182,11 +204,15 @@ def test_module_helpers(tmp_path: Path) -> None:
         except RuntimeError as e:
             print("set_s RuntimeError", e)
         """)
-    r = run_session(tmp_path, """
+    r = run_session(
+        tmp_path,
+        """
         loadrt and2
         loadusr -w python3 helpers.py
         getp and2.0.in1
-        """, {"helpers.py": script})
+        """,
+        {"helpers.py": script},
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     out = r.stdout.splitlines()
     assert out[:12] == [
@@ -202,7 +228,9 @@ def test_module_helpers(tmp_path: Path) -> None:
         "set_p out RuntimeError pin not writable",
         "disconnect False",
         "has_writer False",
-    ], r.stdout + r.stderr
+    ], (
+        r.stdout + r.stderr
+    )
     # our extension: set_s refuses a signal with a writer (pyh.drv drives s1)
     assert out[12:] == ["set_s RuntimeError signal not writable", "TRUE"], r.stdout + r.stderr
 
@@ -232,9 +260,13 @@ def test_types_and_ranges(tmp_path: Path) -> None:
                 print(type(e).__name__)
         print(c.getpins())
         """)
-    r = run_session(tmp_path, """
+    r = run_session(
+        tmp_path,
+        """
         loadusr -w python3 t.py
-        """, {"t.py": script})
+        """,
+        {"t.py": script},
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     assert r.stdout.splitlines() == [
         "OverflowError Value 2147483648 out of range",
@@ -247,7 +279,9 @@ def test_types_and_ranges(tmp_path: Path) -> None:
         "ValueError",
         "{'b': True, 'f': -2.5, 'ls': -9223372036854775808, 'lu': 18446744073709551615, "
         "'s': -2147483648, 'u': 4294967295}",
-    ], r.stdout + r.stderr
+    ], (
+        r.stdout + r.stderr
+    )
 
 
 def test_helpers_need_no_component_and_exited_component_is_closed(tmp_path: Path) -> None:
@@ -266,10 +300,14 @@ def test_helpers_need_no_component_and_exited_component_is_closed(tmp_path: Path
                 print(e)
         print(hal.component_exists("pyx"))
         """)
-    r = run_session(tmp_path, """
+    r = run_session(
+        tmp_path,
+        """
         loadrt and2
         loadusr -w python3 x.py
-        """, {"x.py": script})
+        """,
+        {"x.py": script},
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     assert r.stdout.splitlines() == [
         "True False",
@@ -277,4 +315,6 @@ def test_helpers_need_no_component_and_exited_component_is_closed(tmp_path: Path
         "Invalid operation on closed HAL component",
         "Invalid operation on closed HAL component",
         "False",
-    ], r.stdout + r.stderr
+    ], (
+        r.stdout + r.stderr
+    )

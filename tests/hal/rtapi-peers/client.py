@@ -5,6 +5,7 @@ client.py OWNER_UID MODE: MODE is `list` (send a list request, print the
 status and text of the reply), `stall` (connect, send nothing, report when
 rtapi_app closes the connection), `half` (send half a request, same) or
 `huge` (announce a 2 GiB request)."""
+
 import os
 import socket
 import struct
@@ -39,5 +40,7 @@ if mode == "list":
     st, ln = struct.unpack("iI", data[:8])
     print("status %d: %s" % (st, data[8 : 8 + ln].rstrip(b"\0").decode().strip()))
 else:
-    print("%s: closed by rtapi_app after %s, %d bytes" % (
-        mode, "< 0.5 s" if time.monotonic() - t0 < 0.5 else ">= 0.5 s", len(data)))
+    print(
+        "%s: closed by rtapi_app after %s, %d bytes"
+        % (mode, "< 0.5 s" if time.monotonic() - t0 < 0.5 else ">= 0.5 s", len(data))
+    )
