@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """Generate the benchmark HAL files (see run.sh)."""
+
 from __future__ import annotations
 
 import sys
@@ -20,8 +21,12 @@ def dispatch(nfunct: int, period: int, samples: int) -> str:
 
 def load2000() -> str:
     """A 2,000-line configuration: components, nets, setp, addf."""
-    lines = ["loadrt threads name1=servo period1=1000000 name2=base period2=2000000",
-             "loadrt and2 count=200", "loadrt or2 count=200", "loadrt not count=200"]
+    lines = [
+        "loadrt threads name1=servo period1=1000000 name2=base period2=2000000",
+        "loadrt and2 count=200",
+        "loadrt or2 count=200",
+        "loadrt not count=200",
+    ]
     i = 0
     while len(lines) < 2000:
         k = i % 200

@@ -10,6 +10,7 @@ its own process handling (fallback uid, POSIX non-realtime, waitpid) are
 dropped, because our rtapi_app loads modules in-process and has no such
 lines.
 """
+
 from __future__ import annotations
 
 import re

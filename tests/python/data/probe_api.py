@@ -9,13 +9,18 @@ our output with it after removing object addresses and libhal's own
 (module helpers before/after a component exists, set_s) are tested
 separately.
 """
+
 import hal
+
+
 def t(label, f):
     try:
         r = f()
         print(label, "->", repr(r))
     except BaseException as e:
         print(label, "EXC", type(e).__module__, type(e).__name__, repr(str(e)))
+
+
 c = hal.component("pyc")
 t("newpin f in", lambda: c.newpin("fin", hal.HAL_FLOAT, hal.HAL_IN))
 t("newpin b out", lambda: c.newpin("bout", hal.HAL_BIT, hal.HAL_OUT))
@@ -29,7 +34,7 @@ t("bad dir", lambda: c.newpin("x2", hal.HAL_FLOAT, 99))
 t("param dir as pin", lambda: c.newpin("x3", hal.HAL_FLOAT, hal.HAL_RW))
 t("pin dir as param", lambda: c.newparam("x4", hal.HAL_FLOAT, hal.HAL_IN))
 t("type str", lambda: c.newpin("x5", "float", hal.HAL_IN))
-t("long name", lambda: c.newpin("x"*60, hal.HAL_FLOAT, hal.HAL_IN))
+t("long name", lambda: c.newpin("x" * 60, hal.HAL_FLOAT, hal.HAL_IN))
 t("getitem fin", lambda: c["fin"])
 t("getattr fin", lambda: c.fin)
 t("getitem missing", lambda: c["nope"])
@@ -73,12 +78,26 @@ t("getitem q", lambda: c["q"])
 t("getprefix", lambda: c.getprefix())
 t("getpins", lambda: c.getpins())
 p = c.newpin("w", hal.HAL_FLOAT, hal.HAL_OUT)
-t("pin obj", lambda: (p, p.name, p.type, p.dir, p.value, p.get(), p.get_name(), p.get_type(), p.get_dir(), p.is_pin()))
+t(
+    "pin obj",
+    lambda: (
+        p,
+        p.name,
+        p.type,
+        p.dir,
+        p.value,
+        p.get(),
+        p.get_name(),
+        p.get_type(),
+        p.get_dir(),
+        p.is_pin(),
+    ),
+)
 t("pin set", lambda: p.set(4.5))
 t("pin value", lambda: p.value)
 t("pin value set", lambda: setattr(p, "value", 6.5))
 t("pin get", lambda: p.get())
-t("getitem obj", lambda: c.getitem("w") if hasattr(c,'getitem') else None)
+t("getitem obj", lambda: c.getitem("w") if hasattr(c, "getitem") else None)
 pass
 t("ready", lambda: c.ready())
 t("ready again", lambda: c.ready())
@@ -116,10 +135,10 @@ t("set_p nope", lambda: hal.set_p("nope", "1"))
 t("disconnect", lambda: hal.disconnect("pyc.fin"))
 t("disconnect again", lambda: hal.disconnect("pyc.fin"))
 t("disconnect nope", lambda: hal.disconnect("nope"))
-t("get_info_params", lambda: [d for d in hal.get_info_params() if d['NAME'].startswith('pyc')])
+t("get_info_params", lambda: [d for d in hal.get_info_params() if d["NAME"].startswith("pyc")])
 t("msg level", lambda: hal.get_msg_level())
 t("is_rt etc", lambda: (hal.is_rt, hal.is_sim, hal.is_userspace, hal.is_kernelspace))
 t("item ctor", lambda: hal.item())
-t("Pin ctor", lambda: hal.Pin(p._item if hasattr(p,'_item') else p))
+t("Pin ctor", lambda: hal.Pin(p._item if hasattr(p, "_item") else p))
 t("exit", lambda: c.exit())
 t("get after exit", lambda: c["sio"])
