@@ -10,7 +10,9 @@ def dispatch(nfunct: int, period: int, samples: int) -> str:
     """A thread with nfunct and2 functions; its own run time (THREAD.time,
     time-stamp-counter clocks, measured the same way by LinuxCNC 2.9 and
     us) is read `samples` times while it runs."""
-    lines = [f"loadrt threads name1=t period1={period}", f"loadrt and2 count={nfunct}"]
+    lines = [f"loadrt threads name1=t period1={period}"]
+    if nfunct > 0:
+        lines.append(f"loadrt and2 count={nfunct}")
     lines += [f"addf and2.{i} t" for i in range(nfunct)]
     lines += ["start", "loadusr -w sleep 0.5"]
     for _ in range(samples):
@@ -20,7 +22,9 @@ def dispatch(nfunct: int, period: int, samples: int) -> str:
 
 
 def load2000() -> str:
-    """A 2,000-line configuration: components, nets, setp, addf."""
+    """A 2,000-line configuration: components, nets, setp, addf, between two
+    `loadusr -w date` lines that time it from inside (halrun's own start and
+    end, and lcnc-halrun's cleanup, stay out of the figure)."""
     lines = [
         "loadrt threads name1=servo period1=1000000 name2=base period2=2000000",
         "loadrt and2 count=200",
@@ -52,7 +56,8 @@ def load2000() -> str:
         else:
             lines.append(f"# comment line {i}")
         i += 1
-    return "\n".join(lines) + "\n"
+    stamp = "loadusr -w date +%s.%N"
+    return "\n".join([stamp, *lines, stamp]) + "\n"
 
 
 if __name__ == "__main__":

@@ -339,15 +339,19 @@ static void source_chain(char *buf, size_t len, const char *last)
         snprintf(buf + n, len - n, "%s", last);
 }
 
+/* LinuxCNC 2.9's messages, without a file:line prefix: "Could not open
+ * command file 'X'" (-f) and "Could not open hal file 'X': REASON"
+ * (source).  A directory is named as such. */
 static void open_error(int top, const char *path, int e)
 {
-    if (top) {
-        /* -f FILE: LinuxCNC's message has no file:line prefix */
-        if (!hc.very_quiet)
-            fprintf(stderr, "Could not open hal file '%s': %s\n", path, strerror(e));
-    } else {
-        halcmd_error("Could not open hal file '%s': %s\n", path, strerror(e));
-    }
+    if (hc.very_quiet)
+        return;
+    fflush(stdout);
+    if (top && e == ENOENT)
+        fprintf(stderr, "Could not open command file '%s'\n", path);
+    else
+        fprintf(stderr, "Could not open %s file '%s': %s\n", top ? "command" : "hal", path,
+                strerror(e));
 }
 
 int halcmd_source(const char *path, int top)

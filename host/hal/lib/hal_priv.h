@@ -109,6 +109,14 @@ typedef struct {
     hal_off_t funct;
 } hal_funct_entry_t;
 
+/* Timing storage of a function (hal_malloc'd): the owner's pointer of its
+ * NAME.time pin, then NAME.tmax and NAME.tmax-increased. */
+typedef struct {
+    hal_s32_t *runtime;
+    hal_s32_t maxtime;
+    hal_bit_t maxtime_increased;
+} hal_funct_store_t;
+
 typedef struct {
     hal_off_t next;
     hal_off_t hnext; /* next in the name index bucket */

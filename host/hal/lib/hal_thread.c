@@ -72,11 +72,7 @@ int hal_export_funct(const char *name, void (*funct)(void *, long), void *arg, i
         return -EEXIST;
     }
     /* Storage: the pointer of the .time pin, tmax, tmax-increased. */
-    struct fstore {
-        hal_s32_t *runtime;
-        hal_s32_t maxtime;
-        hal_bit_t maxtime_increased;
-    } *st = shmalloc_dn(sizeof(struct fstore));
+    hal_funct_store_t *st = shmalloc_dn(sizeof(hal_funct_store_t));
     hal_funct_t *f = st ? alloc_obj(sizeof(hal_funct_t), &hal_hdr->funct_free,
                                     &hal_hdr->recycled_functs)
                         : NULL;

@@ -27,12 +27,12 @@
 
 #include "rtapi_app.h"
 
+/* One function of a thread, as the dispatch loop needs it: a contiguous
+ * array of these, no offsets to translate. */
 typedef struct {
     void (*funct)(void *, long);
     void *arg;
-    hal_s32_t **runtime;
-    hal_s32_t *maxtime;
-    hal_bit_t *maxtime_increased;
+    hal_funct_store_t *st; /* .time pin pointer, .tmax, .tmax-increased */
 } rt_entry_t;
 
 typedef struct rt_thread {
@@ -83,9 +83,7 @@ static void rebuild(rt_thread_t *rt)
         hal_funct_t *f = SHMPTR(((hal_funct_entry_t *)SHMPTR(off))->funct);
         e[i].funct = (void (*)(void *, long))(uintptr_t)f->funct;
         e[i].arg = (void *)(uintptr_t)f->arg;
-        e[i].runtime = SHMPTR(f->runtime);
-        e[i].maxtime = SHMPTR(f->maxtime);
-        e[i].maxtime_increased = SHMPTR(f->maxtime_increased);
+        e[i].st = SHMPTR(f->runtime); /* the store starts with the .time pointer */
         i++;
     }
     hal_priv_unlock();
@@ -95,46 +93,68 @@ static void rebuild(rt_thread_t *rt)
     rt->gen = gen;
 }
 
-/* One period of one thread: the hot path.  The thread's own time is
- * measured every period; the functions' .time/.tmax every `timing_every`
- * periods (HAL_TIMING_EVERY, default 16; 1 = every period as LinuxCNC, 0 =
- * never), because reading the time-stamp counter around every function
- * costs more than calling a small function. */
-static unsigned timing_every = 16;
+/* The time-stamp counter, inline: the dispatch loop reads it after every
+ * function, so a call into libhal (rtapi_get_clocks) would cost more than
+ * a small function. */
+static inline uint64_t clocks(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    unsigned int lo, hi;
+    __asm__ __volatile__("rdtsc" : "=a"(lo), "=d"(hi));
+    return ((uint64_t)hi << 32) | lo;
+#else
+    return (uint64_t)rtapi_get_clocks();
+#endif
+}
+
+/* Run the functions, timing each (LinuxCNC's .time, .tmax,
+ * .tmax-increased); returns the clock after the last one. */
+static inline uint64_t run_timed(const rt_entry_t *e, const rt_entry_t *end, long period,
+                                 uint64_t start)
+{
+    for (; e < end; e++) {
+        e->funct(e->arg, period);
+        uint64_t now = clocks();
+        hal_s32_t dt = (hal_s32_t)(now - start);
+        start = now;
+        hal_funct_store_t *st = e->st;
+        *st->runtime = dt;
+        int inc = dt > st->maxtime;
+        if (inc)
+            st->maxtime = dt;
+        st->maxtime_increased = inc;
+    }
+    return start;
+}
+
+/* One period of one thread: the hot path.  The thread's own time and, by
+ * default, every function's .time/.tmax are measured every period, as in
+ * LinuxCNC, so .tmax is the worst case over all periods.
+ * HAL_TIMING_EVERY=N times the functions only every Nth period (0 =
+ * never), for those who want the last clocks of dispatch speed instead. */
+static unsigned timing_every = 1;
 
 static inline void run_cycle(rt_thread_t *rt, int measure)
 {
     if (__builtin_expect(__atomic_load_n(&rt->t->gen, __ATOMIC_ACQUIRE) != rt->gen, 0))
         rebuild(rt);
     const long period = rt->t->period;
-    rt_entry_t *e = rt->entries, *end = e + rt->nentries;
+    const rt_entry_t *e = rt->entries, *end = e + rt->nentries;
     if (!measure) {
         for (; e < end; e++)
             e->funct(e->arg, period);
         return;
     }
-    long long t0 = rtapi_get_clocks(), start = t0;
-    if (timing_every != 0 && ++rt->tick >= timing_every) {
+    uint64_t t0 = clocks(), t1;
+    if (timing_every == 1 || (timing_every != 0 && ++rt->tick >= timing_every)) {
         rt->tick = 0;
-        for (; e < end; e++) {
-            e->funct(e->arg, period);
-            long long now = rtapi_get_clocks();
-            hal_s32_t dt = (hal_s32_t)(now - start);
-            **e->runtime = dt;
-            if (dt > *e->maxtime) {
-                *e->maxtime = dt;
-                *e->maxtime_increased = 1;
-            } else {
-                *e->maxtime_increased = 0;
-            }
-            start = now;
-        }
+        t1 = run_timed(e, end, period, t0);
     } else {
         for (; e < end; e++)
             e->funct(e->arg, period);
-        start = rtapi_get_clocks();
+        t1 = clocks();
     }
-    hal_s32_t total = (hal_s32_t)(start - t0);
+    hal_s32_t total = (hal_s32_t)(t1 - t0);
     hal_s32_t **rtp = SHMPTR(rt->t->runtime);
     **rtp = total;
     hal_s32_t *mx = SHMPTR(rt->t->maxtime);

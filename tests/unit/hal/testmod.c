@@ -12,6 +12,10 @@
  * (s64 OUT) and the period it was called with in `period` (s32 OUT).
  * While the `hold` pin is TRUE it first waits like sampler/streamer do,
  * `while (hold && !rtapi_sim_yield())`, counting in `yields`.
+ * On the wall clock, when `spin-every` (u32 IN) is N > 0, every Nth call
+ * (calls N-1, 2N-1, ...) busy-waits `spin-ns` (s32 IN) nanoseconds first,
+ * counted in `spins` (u32 OUT): a function whose run time varies, for the
+ * .time/.tmax tests.
  * fail=1 makes rtapi_app_main fail after creating pins (tests that a
  * failed loadrt leaves nothing behind).
  */
@@ -45,6 +49,8 @@ typedef struct {
     hal_u32_t *yields; /* rtapi_sim_yield() calls that said "keep waiting" */
     hal_s64_t *now;
     hal_s32_t *period;
+    hal_u32_t *spin_every, *spins;
+    hal_s32_t *spin_ns;
     hal_bit_t bit_ro, bit_rw;
     hal_float_t float_ro, float_rw;
     hal_s32_t s32_ro, s32_rw;
@@ -66,6 +72,13 @@ static void update(void *arg, long period)
     *d->u64_out = *d->u64_in;
     while (*d->hold && !rtapi_sim_yield())
         *d->yields += 1;
+    if (*d->spin_every > 0 && *d->calls % *d->spin_every == *d->spin_every - 1 &&
+        !rtapi_is_simclock()) {
+        long long until = rtapi_get_time() + *d->spin_ns;
+        while (rtapi_get_time() < until)
+            ;
+        *d->spins += 1;
+    }
     *d->calls += 1;
     *d->now = rtapi_get_time();
     *d->period = (hal_s32_t)period;
@@ -120,6 +133,12 @@ int rtapi_app_main(void)
             rc = hal_pin_u32_newf(HAL_OUT, &d->yields, comp_id, "hm-testmod.%d.yields", i);
         if (rc == 0)
             rc = hal_pin_s32_newf(HAL_OUT, &d->period, comp_id, "hm-testmod.%d.period", i);
+        if (rc == 0)
+            rc = hal_pin_u32_newf(HAL_IN, &d->spin_every, comp_id, "hm-testmod.%d.spin-every", i);
+        if (rc == 0)
+            rc = hal_pin_s32_newf(HAL_IN, &d->spin_ns, comp_id, "hm-testmod.%d.spin-ns", i);
+        if (rc == 0)
+            rc = hal_pin_u32_newf(HAL_OUT, &d->spins, comp_id, "hm-testmod.%d.spins", i);
         if (rc == 0)
             rc = hal_export_functf(update, d, 1, 0, comp_id, "hm-testmod.%d.update", i);
         if (rc != 0) {
