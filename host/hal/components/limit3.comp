@@ -4,22 +4,22 @@
 // math/limit3_math.h.
 component limit3 "Follow input signal while obeying limits";
 pin in float in;
-pin in bit enable = 1 "1: out follows in, 0: out returns to 0 (always per constraints)";
+pin in bit enable = 1 "TRUE: out follows in; FALSE: out goes to 0, within the limits";
 pin out float out;
-pin in bit load = 0 "When TRUE, immediately set out to in, ignoring maxv and maxa";
+pin in bit load = 0 "TRUE: out is in (clamped to min..max) at once, without maxv and maxa";
 pin in float min_ = -1e20;
 pin in float max_ = 1e20;
 pin in float maxv = 1e20;
 pin in float maxa = 1e20;
-pin in u32 smooth_steps = 2 "Smooth out acceleration this many periods before reaching input or max/min limit. Higher values avoid oscillation, but will accelerate slightly more slowly.";
+pin in u32 smooth_steps = 2 "Braking is spread over up to this many periods before the target is reached (0 or 1: bang-bang)";
 variable limit3_state_t st;
 function _ "Update out from in and the limits";
 include "math/limit3_math.h";
 description """
-Limit the output signal to fall between min and max, limit its slew rate
-to less than maxv per second, and limit its second derivative to less
-than maxa per second squared.  When the signal is a position, this means
-that the position, velocity, and acceleration are limited.
+out follows in, kept within min..max, with a rate of change of at most maxv
+per second and a second derivative of at most maxa per second squared: for a
+position, a time-optimal move within position, velocity and acceleration
+limits.
 """;
 license "GPL";
 ;;
