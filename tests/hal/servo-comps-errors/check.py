@@ -32,6 +32,10 @@ EXPECT = {
     "loadrt stepgen step_type=15 user_step_type=1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1": (
         "(at most 18)"
     ),
+    "loadrt encoder num_chan=9": "ENCODER: ERROR: invalid number of channels: 9",
+    "loadrt encoder num_chan=-1": "ENCODER: ERROR: invalid number of channels: -1",
+    "loadrt encoder num_chan=2 names=a,b": "num_chan= and names= are mutually exclusive",
+    "loadrt encoder names=a,b,c,d,e,f,g,h,i": "(at most 8)",
 }
 MAXVEL = [
     "STEPGEN: Channel 0: The requested maximum velocity of 2000 steps/sec is too high.",
