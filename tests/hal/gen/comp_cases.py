@@ -41,6 +41,9 @@ class Spec:
     prefix: str = ""  # HAL prefix (default: the component name)
     note: str = ""
     period: int = 1000000
+    test: str = ""  # test folder name (default: COMP-io)
+    io: list[str] = field(default_factory=list)  # IO pins: own column per instance
+    singleton: bool = False  # `option singleton`: one instance named like the component
 
 
 def fmt(x: float, t: str) -> str:
@@ -67,15 +70,17 @@ def write(spec: Spec, d: Path, rng: random.Random) -> None:
     rows = spec.rows(rng)
     prefix = spec.prefix or spec.comp.replace("_", "-")
     k = len(spec.setps)
-    insts = [f"{prefix}.{i}" for i in range(k)]
-    icfg = "".join(t for _, t in spec.inputs)
+    insts = [prefix] if spec.singleton else [f"{prefix}.{i}" for i in range(k)]
+    shared = [(p, t) for p, t in spec.inputs if p not in spec.io]
+    own = [(p, t) for p, t in spec.inputs if p in spec.io]
+    icfg = "".join(t for _, t in shared)
     ocfg = "".join(t for _ in insts for _, t in spec.outputs)
     nfloat = sum(1 for _, t in spec.outputs if t == "f") * k
     hal = [
-        f"# {spec.comp}: listing of {k} instances, then {spec.note}".rstrip(),
+        f"# {spec.comp}: listing of {len(insts)} instance(s), then {spec.note}".rstrip(),
         "# Float outputs are scaled by 2^40 (exact) before the sampler, so its",
         "# 6 decimals compare them bit for bit (written by tests/hal/gen/comp_cases.py).",
-        f"loadrt {spec.comp} count={k}",
+        f"loadrt {spec.comp}" + ("" if spec.singleton else f" count={k}"),
         f"show pin {prefix}",
         f"show param {prefix}",
         f"show funct {prefix}",
@@ -86,8 +91,20 @@ def write(spec: Spec, d: Path, rng: random.Random) -> None:
     if nfloat:
         hal.append(f"loadrt scale count={nfloat}")
     hal.append("addf streamer.0 t")
-    for j, (pin, _) in enumerate(spec.inputs):
+    for j, (pin, _) in enumerate(shared):
         hal.append(f"net i{j} streamer.0.pin.{j} => " + " ".join(f"{x}.{pin}" for x in insts))
+    # an IO pin cannot share a signal with the streamer's OUT pin (LinuxCNC
+    # refuses): its signal starts at the first row's value (sets) and only
+    # the component writes it afterwards
+    iosig: dict[tuple[str, str], str] = {}
+    first = dict(zip((p for p, _ in spec.inputs), rows[0]))
+    sets = []
+    for x in insts:
+        for pin, t in own:
+            sig = f"io{len(iosig)}"
+            iosig[(x, pin)] = sig
+            hal.append(f"net {sig} {x}.{pin}")
+            sets.append(f"sets {sig} {fmt(first[pin], t)}")
     for i, x in enumerate(insts):
         for p, v in spec.setps[i].items():
             hal.append(f"setp {x}.{p} {v}")
@@ -97,7 +114,9 @@ def write(spec: Spec, d: Path, rng: random.Random) -> None:
     c = 0
     for x in insts:
         for pin, t in spec.outputs:
-            if t == "f":
+            if (x, pin) in iosig:
+                hal.append(f"net {iosig[(x, pin)]} => sampler.0.pin.{c}")
+            elif t == "f":
                 hal += [
                     f"net o{c} {x}.{pin} => scale.{s}.in",
                     f"net so{c} scale.{s}.out => sampler.0.pin.{c}",
@@ -108,7 +127,7 @@ def write(spec: Spec, d: Path, rng: random.Random) -> None:
             else:
                 hal.append(f"net o{c} {x}.{pin} => sampler.0.pin.{c}")
             c += 1
-    hal += [
+    hal += sets + [
         "addf sampler.0 t",
         "loadusr -w halstreamer in.txt",
         "start",
@@ -118,7 +137,9 @@ def write(spec: Spec, d: Path, rng: random.Random) -> None:
     (d / "test.hal").write_text("\n".join(hal) + "\n")
     with open(d / "in.txt", "w") as f:
         for r in rows:
-            f.write(" ".join(fmt(v, t) for v, (_, t) in zip(r, spec.inputs)) + "\n")
+            vals = dict(zip((p for p, _ in spec.inputs), r))
+            cols = [fmt(vals[p], t) for p, t in shared]
+            f.write(" ".join(cols) + "\n")
     readme = d / "README"
     readme.write_text(
         "expected: LinuxCNC 2.9\n\n"
@@ -136,7 +157,7 @@ SPECS: dict[str, Spec] = {}
 
 
 def spec(s: Spec) -> None:
-    SPECS[s.comp] = s
+    SPECS[s.test or f"{s.comp}-io"] = s
 
 
 def rows_of(cols: list[list[float]]) -> list[Row]:
@@ -151,7 +172,7 @@ def main() -> None:
     names = sys.argv[1:] or sorted(cc.SPECS)
     for name in names:
         s = cc.SPECS[name]
-        cc.write(s, HERE.parent / f"{name}-io", random.Random(name))
+        cc.write(s, HERE.parent / name, random.Random(name.removesuffix("-io")))
 
 
 if __name__ == "__main__":

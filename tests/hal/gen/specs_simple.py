@@ -320,3 +320,252 @@ spec(
         note="inside the hemisphere above the centre",
     )
 )
+
+
+def _biquad_rows(rng: random.Random) -> list[Row]:
+    """Segments of 12 periods: enable falls for one period, then rises with a
+    new type/f0/Q (coefficients are computed on the rising edge), with a
+    step and noise on in."""
+    cases = [
+        (1, 100.0, 0.7071),
+        (2, 60.0, 1.2),
+        (1, 499.0, 0.7071),
+        (1, 500.0, 0.7071),
+        (1, 600.0, 0.9),
+        (1, 50.0, 0.5),
+        (1, 50.0, 0.500001),
+        (1, 50.0, 2.0),
+        (1, 50.0, 1.999),
+        (2, 250.0, 0.6),
+        (0, 100.0, 0.7071),
+        (3, 100.0, 0.7),
+        (1, 0.0, 0.7),
+        (1, -20.0, 0.7),
+        (1, NAN, 0.7),
+        (1, 100.0, NAN),
+        (2, 1e-3, 1.5),
+        (1, 333.333, 0.9),
+        (2, 10.0, 0.51),
+        (1, 100.0, 0.3),
+        (1, 100.0, 2.5),
+        (0, 10.0, 0.7),
+        (2, 100.0, 0.49),
+        (1, 100.0, 2.01),
+        (0, 10.0, 0.7),
+        (1, INF, 0.7),
+        (1, 100.0, INF),
+        (1, -INF, 0.7),
+    ]
+    rows: list[Row] = []
+    for typ, f0, q in cases:
+        rows.append([0.0, 0, typ, f0, q])
+        for i in range(11):
+            x = 1.0 if i >= 1 else 0.0
+            rows.append([x + round(rng.uniform(-0.2, 0.2), 6), 1, typ, f0, q])
+    return rows
+
+
+spec(
+    Spec(
+        "biquad",
+        [("in", "f"), ("enable", "b"), ("type", "u"), ("f0", "f"), ("Q", "f")],
+        [("out", "f"), ("valid", "b"), ("s1", "f"), ("s2", "f")],
+        _biquad_rows,
+        setps=[{}, {"n0": "0.5", "n1": "0.3", "n2": "0.2", "d1": "-0.4", "d2": "0.1"}],
+        note="coefficients per type on enable's rising edge, invalid f0/Q, type 0",
+    )
+)
+
+
+spec(
+    Spec(
+        "biquad",
+        [("in", "f"), ("enable", "b"), ("type", "u"), ("f0", "f"), ("Q", "f")],
+        [("out", "f"), ("valid", "b"), ("s1", "f"), ("s2", "f")],
+        _biquad_rows,
+        note="the same inputs on a 250 us thread (sample rate 4 kHz)",
+        period=250000,
+        test="biquad-period",
+    )
+)
+
+
+def _spindle_rows(rng: random.Random) -> list[Row]:
+    """Velocity commands (rev/s at scale 1) with index-enable pulses."""
+    rows: list[Row] = []
+    vels = [0.0, 50.0, 50.0, 123.4, -80.0, 600.0, 1000.0, -1000.0, 0.5, NAN, 20.0, INF, 7.0]
+    for v in vels:
+        for i in range(24):
+            rows.append([v, 1])
+    return rows
+
+
+spec(
+    Spec(
+        "sim_spindle",
+        [("velocity-cmd", "f"), ("index-enable", "b")],
+        [("position-fb", "f"), ("index-enable", "b")],
+        _spindle_rows,
+        setps=[{}, {"scale": "0.0166666667"}, {"scale": "-2.5"}, {"scale": "0.01"}],
+        note="position from velocity-cmd x scale, index-enable cleared at whole revolutions",
+        io=["index-enable"],
+    )
+)
+
+
+def _thc_rows(rng: random.Random) -> list[Row]:
+    """Segments: arc voltage around the request, velocity in/out of tolerance,
+    torch/arc-ok/enable toggles, Z moving up and down."""
+    rows: list[Row] = []
+    z = 10.0
+    for seg in range(14):
+        en = 0 if seg in (0, 5) else 1
+        torch = 0 if seg in (6, 7, 8, 12) else 1
+        ok = 0 if seg in (3, 12) else 1
+        req = 100.0
+        for i in range(20):
+            cur = req if seg not in (2, 9) else req * (0.5 if seg == 2 else 0.97)
+            volts_target = [
+                120.0,
+                95.0,
+                80.0,
+                130.0,
+                100.5,
+                90.0,
+                70.0,
+                130.0,
+                100.0,
+                110.0,
+                85.0,
+                100.0,
+                140.0,
+                60.0,
+            ][seg]
+            enc = (volts_target + rng.uniform(-0.5, 0.5)) * 10.0 + 2.0
+            if seg in (7, 8):
+                z += 0.05 if seg == 7 else -0.03
+            elif seg == 11:
+                z += 0.02
+            rows.append([enc, cur, req, 100.0, rng.choice([5.0, 2.0]), torch, ok, en, z])
+    rows.append([NAN, 100.0, 100.0, 100.0, 5.0, 1, 1, 1, z])
+    rows.append([1002.0, NAN, 100.0, 100.0, 5.0, 1, 1, 1, z])
+    rows.append([1002.0, 100.0, 0.0, 100.0, 5.0, 1, 1, 1, z])
+    return rows
+
+
+def _thc_torch_rows(rng: random.Random) -> list[Row]:
+    """Torch-off removal of the correction in both signs, at positive,
+    zero and negative Z, and what a torch-on, disabled or not-at-speed
+    period does to the remembered Z; the corner-lock boundary."""
+    rows: list[Row] = []
+
+    def seg(
+        n: int,
+        enc: float,
+        torch: int,
+        ok: int,
+        en: int,
+        z: float,
+        cur: float = 100.0,
+        req: float = 100.0,
+        dz: float = 0.0,
+    ) -> None:
+        for i in range(n):
+            rows.append([enc, cur, req, 100.0, 5.0, torch, ok, en, z + dz * (i + 1)])
+
+    for z in (10.0, -5.0):
+        for enc in (902.0, 1102.0):  # build the correction up / down
+            for dz in (0.0, 0.01, -0.01):
+                seg(20, enc, 1, 1, 1, z)
+                seg(6, 1002.0, 0, 1, 1, z, dz=dz)
+                seg(1, 1002.0, 1, 1, 1, z)
+    seg(5, 1102.0, 1, 1, 1, -5.0)
+    seg(3, 1002.0, 0, 1, 1, -5.0, dz=-0.01)
+    seg(1, 1002.0, 1, 0, 1, -4.9)  # torch on, arc not ok
+    seg(2, 1002.0, 0, 1, 1, -4.9, dz=0.01)
+    seg(1, 1002.0, 1, 1, 1, -4.8, cur=50.0)  # torch on, not at speed
+    seg(2, 1002.0, 0, 1, 1, -4.8, dz=0.01)
+    seg(1, 1002.0, 0, 1, 0, -4.7)  # disabled, torch off
+    seg(2, 1002.0, 0, 1, 1, -4.6, dz=0.01)
+    seg(2, 902.0, 1, 1, 0, -4.6)  # disabled, torch on
+    seg(2, 1002.0, 0, 1, 1, -4.5, dz=0.01)
+    seg(3, 1002.0, 0, 1, 1, 0.0)
+    for req in (100.0, -100.0, 0.0, 50.0, -0.0):
+        for cur in (150.0, 100.0, 96.0, 95.0, 0.0, -0.0, -96.0, -100.0):
+            seg(1, 902.0, 1, 1, 1, 0.0, cur=cur, req=req)
+    return rows
+
+
+spec(
+    Spec(
+        "thc",
+        [
+            ("encoder-vel", "f"),
+            ("current-vel", "f"),
+            ("requested-vel", "f"),
+            ("volts-requested", "f"),
+            ("vel-tol", "f"),
+            ("torch-on", "b"),
+            ("arc-ok", "b"),
+            ("enable", "b"),
+            ("z-pos-in", "f"),
+        ],
+        [
+            ("z-pos-out", "f"),
+            ("z-fb-out", "f"),
+            ("volts", "f"),
+            ("vel-status", "b"),
+            ("offset-value", "f"),
+        ],
+        _thc_torch_rows,
+        setps=[
+            {
+                "vel-scale": "0.1",
+                "scale-offset": "2.0",
+                "velocity-tol": "4",
+                "voltage-tol": "1.5",
+                "correction-vel": "0.002",
+            }
+        ],
+        singleton=True,
+        test="thc-torch",
+        note="torch-off removal of the correction, the remembered Z, corner-lock edges",
+    )
+)
+
+
+spec(
+    Spec(
+        "thc",
+        [
+            ("encoder-vel", "f"),
+            ("current-vel", "f"),
+            ("requested-vel", "f"),
+            ("volts-requested", "f"),
+            ("vel-tol", "f"),
+            ("torch-on", "b"),
+            ("arc-ok", "b"),
+            ("enable", "b"),
+            ("z-pos-in", "f"),
+        ],
+        [
+            ("z-pos-out", "f"),
+            ("z-fb-out", "f"),
+            ("volts", "f"),
+            ("vel-status", "b"),
+            ("offset-value", "f"),
+        ],
+        _thc_rows,
+        setps=[
+            {
+                "vel-scale": "0.1",
+                "scale-offset": "2.0",
+                "velocity-tol": "4",
+                "voltage-tol": "1.5",
+                "correction-vel": "0.002",
+            }
+        ],
+        singleton=True,
+        note="volts from encoder-vel, corner lock, correction up/down, removal on the way up",
+    )
+)
