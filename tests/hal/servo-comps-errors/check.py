@@ -36,6 +36,11 @@ EXPECT = {
     "loadrt encoder num_chan=-1": "ENCODER: ERROR: invalid number of channels: -1",
     "loadrt encoder num_chan=2 names=a,b": "num_chan= and names= are mutually exclusive",
     "loadrt encoder names=a,b,c,d,e,f,g,h,i": "(at most 8)",
+    "loadrt pwmgen": "PWMGEN: ERROR: no channels configured",
+    "loadrt pwmgen output_type=-1": "PWMGEN: ERROR: no channels configured",
+    "loadrt pwmgen output_type=1,3": "PWMGEN: ERROR: bad output type '3', channel 1",
+    "loadrt pwmgen output_type=0,0,0,0,0,0,0,0,0": "(at most 8)",
+    "loadrt pwmgen output_type=x": "`x' invalid for parameter `output_type=x'",
 }
 MAXVEL = [
     "STEPGEN: Channel 0: The requested maximum velocity of 2000 steps/sec is too high.",
