@@ -44,6 +44,8 @@ class Spec:
     test: str = ""  # test folder name (default: COMP-io)
     io: list[str] = field(default_factory=list)  # IO pins: own column per instance
     singleton: bool = False  # `option singleton`: one instance named like the component
+    load: str = ""  # loadrt arguments instead of count=N
+    gfuncts: list[str] = field(default_factory=list)  # functions of the whole component
 
 
 def fmt(x: float, t: str) -> str:
@@ -80,7 +82,8 @@ def write(spec: Spec, d: Path, rng: random.Random) -> None:
         f"# {spec.comp}: listing of {len(insts)} instance(s), then {spec.note}".rstrip(),
         "# Float outputs are scaled by 2^40 (exact) before the sampler, so its",
         "# 6 decimals compare them bit for bit (written by tests/hal/gen/comp_cases.py).",
-        f"loadrt {spec.comp}" + ("" if spec.singleton else f" count={k}"),
+        f"loadrt {spec.comp}"
+        + (f" {spec.load}" if spec.load else "" if spec.singleton else f" count={k}"),
         f"show pin {prefix}",
         f"show param {prefix}",
         f"show funct {prefix}",
@@ -110,6 +113,8 @@ def write(spec: Spec, d: Path, rng: random.Random) -> None:
             hal.append(f"setp {x}.{p} {v}")
         for f in spec.functs:
             hal.append(f"addf {x}{'.' + f if f else ''} t")
+    for f in spec.gfuncts:
+        hal.append(f"addf {prefix}.{f} t")
     s = 0
     c = 0
     for x in insts:

@@ -569,3 +569,105 @@ spec(
         note="volts from encoder-vel, corner lock, correction up/down, removal on the way up",
     )
 )
+
+
+def _sim_encoder_rows(rng: random.Random) -> list[Row]:
+    """Segments of 30 periods at one speed: slow and fast both ways, beyond
+    the one-step-per-period limit, NaN and infinities."""
+    speeds = [
+        0.0,
+        1.0,
+        10.0,
+        0.37,
+        -1.0,
+        250.0,
+        1000.0,
+        3000.0,
+        -3000.0,
+        NAN,
+        5.0,
+        INF,
+        2.0,
+        -INF,
+        1.0,
+    ]
+    # first: 19999 counts/s at ppr 100 (20001 at scale 0.9999), then a crawl:
+    # the first period assumes a 50 us make-pulses period as 2.9 does
+    return [[49.9975]] + [[1.164153218e-5]] * 20 + [[v] for v in speeds for _ in range(30)]
+
+
+_SE_PINS = [("phase-A", "b"), ("phase-B", "b"), ("phase-Z", "b"), ("rawcounts", "s")]
+
+spec(
+    Spec(
+        "sim_encoder",
+        [("speed", "f")],
+        _SE_PINS,
+        _sim_encoder_rows,
+        setps=[
+            {},
+            {"ppr": "1"},
+            {"ppr": "3", "scale": "60"},
+            {"ppr": "7", "scale": "-2"},
+            {"scale": "0.9999"},
+        ],
+        functs=[],
+        gfuncts=["update-speed", "make-pulses"],
+        load="num_chan=5",
+        note="quadrature, index and rawcounts per period, speeds beyond the limit, first period",
+    )
+)
+
+
+def _sim_encoder_fine_rows(rng: random.Random) -> list[Row]:
+    """A non-zero speed from the first period on, then random speeds held
+    for random stretches, with sign changes."""
+    rows: list[Row] = []
+    while len(rows) < 400:
+        v = rng.choice([round(rng.uniform(-8, 8), 4), round(rng.uniform(-0.5, 0.5), 5), 1e-6])
+        rows += [[v]] * rng.randint(5, 40)
+    return [[3.5]] * 10 + rows[:400]
+
+
+spec(
+    Spec(
+        "sim_encoder",
+        [("speed", "f")],
+        _SE_PINS + [("scale", "f")],
+        _sim_encoder_fine_rows,
+        setps=[
+            {"scale": "1e-21"},
+            {"scale": "-1e-20", "ppr": "1"},
+            {"scale": "nan"},
+            {"scale": "0.25", "ppr": "3"},
+        ],
+        functs=[],
+        gfuncts=["update-speed", "make-pulses"],
+        load="num_chan=4",
+        period=50000,
+        test="sim_encoder-scale",
+        note="50 us thread: tiny/NaN scales (scale written back), random speeds",
+    )
+)
+
+
+spec(
+    Spec(
+        "sim_encoder",
+        [("speed", "f")],
+        _SE_PINS,
+        _sim_encoder_fine_rows,
+        setps=[
+            {"ppr": "0"},
+            {"ppr": "4294967295", "scale": "1e12"},
+            {"ppr": "2"},
+            {"scale": "inf"},
+        ],
+        functs=[],
+        gfuncts=["update-speed", "make-pulses"],
+        load="num_chan=4",
+        period=37000,
+        test="sim_encoder-ppr",
+        note="37 us thread: ppr 0 and 2^32-1, infinite scale, random speeds",
+    )
+)
