@@ -1,0 +1,12 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// tristate_float: drives its I/O output only while enabled, like a tristate
+// buffer on a shared line; LinuxCNC 2.9's names (docs/tristate_float.md).
+component tristate_float "Put a float on an I/O pin only while enabled";
+pin in float in "Value to drive";
+pin io float out "Driven with in while enable is TRUE, left alone otherwise";
+pin in bit enable "TRUE: drive out";
+function _ "If enable is TRUE, copy in to out";
+license "GPL";
+;;
+if (enable)
+    out = in;
