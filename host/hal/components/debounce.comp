@@ -8,7 +8,7 @@
 // it is FALSE; a TRUE input with the count already at delay makes the
 // output TRUE, a FALSE input with the count at 0 makes it FALSE.  So with
 // delay 0 the output follows the input, and with delay N a change must last
-// N + 1 periods to get through.  The filters are
+// N + 1 periods to get through.  A negative delay is set to 1.  The filters are
 // made in EXTRA_SETUP because each group has its own number of them.
 component debounce "Filter noisy digital inputs";
 param rw s32 delay = 5 "Filter delay of the group, in periods";
@@ -51,7 +51,9 @@ EXTRA_SETUP() {
 }
 
 FUNCTION(_) {
-    int d = delay > 0 ? delay : 0;
+    if (delay < 0)
+        delay = 1; /* as LinuxCNC 2.9 does, visibly */
+    int d = delay;
     for (int f = 0; f < nfilt; f++) {
         int c = fcount[f];
         if (c > d)

@@ -52,10 +52,10 @@ EXTRA_SETUP() {
 FUNCTION(set_timeouts) {
     for (int i = 0; i < ninputs; i++) {
         double t = timeout[i];
-        if (!(t >= 0)) {
-            t = 0; /* negative or nan: no time at all */
-            timeout[i] = 0;
-        }
+        if (!(t >= 0))
+            t = 0; /* negative or nan: no time at all, as a timeout of 0 */
+        else if (t > 1e9)
+            t = 1e9; /* some 30 years; keeps the ns count in range */
         timeout_ns[i] = (long)(t * 1e9);
     }
     int en = enable_in;
@@ -79,7 +79,7 @@ FUNCTION(process) {
         if (v != last_input[i]) {
             last_input[i] = v;
             left_ns[i] = timeout_ns[i];
-        } else {
+        } else if (left_ns[i] >= 0) {
             left_ns[i] -= period;
             if (left_ns[i] < 0)
                 fault = 1;
