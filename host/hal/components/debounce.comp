@@ -3,6 +3,7 @@
 // option (docs/debounce.md):
 //   loadrt debounce cfg=1,4,2   -> groups debounce.0 (1 filter), debounce.1
 //                                  (4 filters), debounce.2 (2 filters)
+//   loadrt debounce             -> one group of one filter (the seed's default)
 // Every filter of a group shares the group's delay and function.  Each
 // filter counts up (to delay) while its input is TRUE and down (to 0) while
 // it is FALSE; a TRUE input with the count already at delay makes the
@@ -85,8 +86,10 @@ static int count_groups(void) {
         n++;
     }
     if (n == 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "DEBOUNCE: ERROR: no channels configured\n");
-        return -EINVAL;
+        /* the seed's default, one group of one filter (LinuxCNC 2.9 refuses
+         * to load without cfg=) */
+        cfg[0] = 1;
+        n = 1;
     }
     return n;
 }
