@@ -42,13 +42,14 @@ EPP, EPP_STALL = 0x20, 0x21
 CONFIG, TIME = 0x30, 0x40
 PROBE, DRIVE, QUAD, LOOP, PROBE_RESET = 0x50, 0x51, 0x52, 0x53, 0x54
 DUMP = 0x60
+PLANT = 0x70
 
 BUS_LOCAL, BUS_EPP_HM2, BUS_EPP_PLUTO = 1, 2, 3
 STATE_BLANK, STATE_CONFIGURED = 0, 1
 CONFIG_STATUS, CONFIG_RESET, CONFIG_PROGRAM = 0, 1, 2
 TIME_ADVANCE, TIME_LOCKSTEP, TIME_FREERUN = 0, 1, 2
 DRIVE_RELEASE, DRIVE_LOW, DRIVE_HIGH = 0, 1, 2
-EXT_NONE, EXT_LOW, EXT_HIGH, EXT_LOOP, EXT_QUAD = 0, 1, 2, 3, 4
+EXT_NONE, EXT_LOW, EXT_HIGH, EXT_LOOP, EXT_QUAD, EXT_PLANT = 0, 1, 2, 3, 4, 5
 NO_PIN = 0xFFFFFFFF
 NEVER = 0xFFFFFFFFFFFFFFFF
 
@@ -306,6 +307,10 @@ class VBoardClient:
 
     def epp_stall(self, on: bool) -> None:
         self.call(EPP_STALL, struct.pack("<I", int(on)))
+
+    def plant(self, command: str) -> str:
+        """A VB_PLANT text command ("status", "trace PATH", "trace off"): its JSON reply."""
+        return self.call(PLANT, command.encode()).decode()
 
 
 def bit_payload(bit: bytes) -> bytes:

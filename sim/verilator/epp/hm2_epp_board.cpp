@@ -140,6 +140,16 @@ class Hm2EppBoard final : public EppPortBoard {
             v.push_back(f.info->firmware);
         return v;
     }
+    std::vector<std::pair<std::string, std::string>>
+    pin_names(const std::string &firmware) const override
+    {
+        std::vector<std::pair<std::string, std::string>> v;
+        for (const Hm2EppFw &f : kFws)
+            if (firmware == f.info->firmware)
+                for (uint32_t p = 0; p < f.info->io_width; p++)
+                    v.emplace_back(f.info->pins[p].label, f.info->pins[p].function);
+        return v;
+    }
     PinBank &pins() override { return pins_; }
 
     void run_until(uint64_t t) override

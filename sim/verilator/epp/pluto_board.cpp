@@ -141,6 +141,45 @@ class PlutoBoard final : public EppPortBoard {
             v.push_back(f.name);
         return v;
     }
+    std::vector<std::pair<std::string, std::string>>
+    pin_names(const std::string &firmware) const override
+    {
+        // Pin names of the firmware docs (docs/pluto-*-firmware.md): pins
+        // 0..22 outputs, 23..42 inputs.
+        std::vector<std::string> n;
+        if (firmware == "pluto_servo") {
+            for (int i = 0; i < 10; i++)
+                n.push_back("OUT" + std::to_string(i));
+            for (int i = 0; i < 4; i++) {
+                n.push_back("UP" + std::to_string(i));
+                n.push_back("DN" + std::to_string(i));
+            }
+            n.push_back("LED");
+            n.resize(kFirstInput);
+            for (int i = 0; i < 8; i++)
+                n.push_back("IN" + std::to_string(i));
+            for (const char *q : {"QZ", "QB", "QA"})
+                for (int i = 0; i < 4; i++)
+                    n.push_back(q + std::to_string(i));
+        } else if (firmware == "pluto_step") {
+            for (int i = 0; i < 14; i++)
+                n.push_back("OUT" + std::to_string(i));
+            for (int i = 0; i < 4; i++) {
+                n.push_back("STEP" + std::to_string(i));
+                n.push_back("DIR" + std::to_string(i));
+            }
+            n.push_back("LED");
+            for (int i = 0; i < 16; i++)
+                n.push_back("IN" + std::to_string(i));
+        } else {
+            return {};
+        }
+        n.resize(kPins);
+        std::vector<std::pair<std::string, std::string>> v;
+        for (const std::string &name : n)
+            v.emplace_back("", name);
+        return v;
+    }
     PinBank &pins() override { return pins_; }
 
     void run_until(uint64_t t) override

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pins.h"
@@ -49,6 +50,16 @@ class Board {
     virtual uint32_t clock_high_hz() const = 0; // 0 while blank / no 2nd clock
     // Names of the firmwares this build can run on this board.
     virtual std::vector<std::string> firmwares() const = 0;
+    // Names of the I/O pins under `firmware` (one entry per pin, in pin
+    // order: connector label and module function, either may be empty), so
+    // a machine file (vboard --machine) can name pins.  Empty when the
+    // firmware is unknown.
+    virtual std::vector<std::pair<std::string, std::string>>
+    pin_names(const std::string &firmware) const
+    {
+        (void)firmware;
+        return {};
+    }
 
     // ---- pins --------------------------------------------------------------
     // The pin layer (levels, external drive, loops, quadrature sources and

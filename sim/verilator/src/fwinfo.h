@@ -10,6 +10,13 @@
 
 namespace vb {
 
+// One I/O pin of a firmware: its connector label ("P2-05") and the module
+// function routed to it ("Encoder 0 B"; "" for a plain GPIO).
+struct PinName {
+    const char *label;
+    const char *function;
+};
+
 struct FwInfo {
     const char *board;      // "5i20"
     const char *firmware;   // "SVST8_4"
@@ -21,6 +28,7 @@ struct FwInfo {
     // Some module has logic on ClockHigh (PWMGen).  When none has, the
     // board skips the ClockHigh-only edges: nothing could see them.
     bool uses_clock_high;
+    const PinName *pins;    // io_width entries, in IO order
 };
 
 } // namespace vb

@@ -63,6 +63,16 @@ std::vector<std::string> LocalBusBoard::firmwares() const
     return v;
 }
 
+std::vector<std::pair<std::string, std::string>>
+LocalBusBoard::pin_names(const std::string &firmware) const
+{
+    std::vector<std::pair<std::string, std::string>> v;
+    if (const LbEntry *e = find(firmware))
+        for (uint32_t p = 0; p < e->info->io_width; p++)
+            v.emplace_back(e->info->pins[p].label, e->info->pins[p].function);
+    return v;
+}
+
 const LbEntry *LocalBusBoard::find(const std::string &firmware) const
 {
     for (size_t i = 0; i < kNumLbModels; i++)

@@ -60,6 +60,8 @@ class LocalBusBoard final : public Board {
     uint32_t clock_low_hz() const override { return fw_ ? fw_->clock_low_hz : 0; }
     uint32_t clock_high_hz() const override { return fw_ ? fw_->clock_high_hz : 0; }
     std::vector<std::string> firmwares() const override;
+    std::vector<std::pair<std::string, std::string>>
+    pin_names(const std::string &firmware) const override;
     PinBank &pins() override { return pins_; }
     uint64_t now_ns() const override { return model_ ? model_->now_ns() : now_; }
     void run_until(uint64_t t_ns) override;

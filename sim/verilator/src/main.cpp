@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "board.h"
+#include "plant/machine.h"
 #include "server.h"
 #include "vcd2fst.h"
 
@@ -23,7 +24,7 @@ namespace {
 
 struct Options {
     vb::ServerOptions server;
-    std::string board, firmware, dump;
+    std::string board, firmware, dump, machine;
     std::vector<vb_loop> loops;
     std::vector<vb_quad> quads;
     bool list = false;
@@ -35,7 +36,7 @@ void usage(FILE *f)
                  "usage: vboard --socket PATH --board NAME [--firmware NAME] [--freerun]\n"
                  "              [--loop FROM:TO[:inv]]... [--loop-file FILE]\n"
                  "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd|.fst] [--log]\n"
-                 "              [--spin USEC] [--socket-mode OCTAL]\n"
+                 "              [--spin USEC] [--socket-mode OCTAL] [--machine FILE]\n"
                  "       vboard --list\n"
                  "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");
 }
@@ -142,7 +143,8 @@ int parse_args(int argc, char **argv, Options &o)
         {"quad", required_argument, nullptr, 'q'},    {"dump", required_argument, nullptr, 'd'},
         {"log", no_argument, nullptr, 'g'},           {"list", no_argument, nullptr, 'i'},
         {"help", no_argument, nullptr, 'h'},          {"spin", required_argument, nullptr, 'p'},
-        {"socket-mode", required_argument, nullptr, 'm'}, {nullptr, 0, nullptr, 0}};
+        {"socket-mode", required_argument, nullptr, 'm'}, {"machine", required_argument, nullptr, 'M'},
+        {nullptr, 0, nullptr, 0}};
     std::string err;
     int c;
     while ((c = getopt_long(argc, argv, "s:b:f:", longopts, nullptr)) != -1) {
@@ -156,6 +158,7 @@ int parse_args(int argc, char **argv, Options &o)
         case 'g': o.server.log = true; break;
         case 'i': o.list = true; break;
         case 'd': o.dump = optarg; break;
+        case 'M': o.machine = optarg; break;
         case 'm': {
             char *end = nullptr;
             errno = 0;
@@ -282,6 +285,18 @@ int main(int argc, char **argv)
     }
     if (setup(*board, o) != 0)
         return 1;
+    std::unique_ptr<vb::plant::Machine> machine;
+    if (!o.machine.empty()) {
+        vb::plant::MachineSpec spec;
+        vb::Board &b = *board;
+        auto names = [&b](const std::string &fw) { return b.pin_names(fw); };
+        if (!vb::plant::load_machine(o.machine, o.board, names, b.pins().size(), spec, err)) {
+            std::fprintf(stderr, "vboard: %s\n", err.c_str());
+            return 1;
+        }
+        machine = std::make_unique<vb::plant::Machine>(spec);
+        machine->attach(b.pins(), b.now_ns());
+    }
 
     int sfd = signalfd(-1, &mask, SFD_CLOEXEC);
     if (sfd < 0) {
@@ -291,6 +306,7 @@ int main(int argc, char **argv)
     int status;
     {
         vb::Server server(*board, o.server);
+        server.set_plant(machine.get());
         if (server.open(err) < 0) {
             std::fprintf(stderr, "vboard: %s\n", err.c_str());
             ::close(sfd);
@@ -302,6 +318,7 @@ int main(int argc, char **argv)
         std::fflush(stdout);
         status = server.run(sfd);
     }
+    board->pins().set_agent(nullptr);
     std::string derr;
     board->dump(false, "", derr);
     ::close(sfd);

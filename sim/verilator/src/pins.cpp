@@ -21,7 +21,8 @@ std::string pin_range_error(const char *what, uint32_t pin, uint32_t n)
 
 PinBank::PinBank(uint32_t n)
     : n_(n), fout_((n + 31) / 32, 0), foe_((n + 31) / 32, 0), in_((n + 31) / 32, 0),
-      scratch_((n + 31) / 32, 0), ext_(n, kNone), srcval_(n, 0), st_(n)
+      scratch_((n + 31) / 32, 0), ext_(n, kNone), srcval_(n, 0), st_(n), watch_(n, 0),
+      owned_(n, 0)
 {
     // Undriven pins read 1 (pull-ups).
     for (uint32_t p = 0; p < n_; p++)
@@ -40,7 +41,7 @@ bool PinBank::compute(uint32_t pin) const
     for (const Loop &l : loops_)
         if (l.to == pin)
             return level(l.from) != l.invert;
-    if (ext_[pin] == kQuad)
+    if (ext_[pin] == kQuad || ext_[pin] == kPlant)
         return srcval_[pin];
     return true;
 }
@@ -70,6 +71,23 @@ void PinBank::set_level(uint32_t pin, bool v, uint64_t now)
     }
     s.last_change = now;
     set_bit(in_, pin, v);
+    if (watch_[pin] && agent_)
+        agent_->on_pin(pin, v, now);
+}
+
+void PinBank::set_agent(PinAgent *agent)
+{
+    agent_ = agent;
+    update_next_event();
+}
+
+void PinBank::own(uint32_t pin, bool level, uint64_t now)
+{
+    owned_[pin] = 1;
+    srcval_[pin] = level;
+    if (ext_[pin] == kNone)
+        ext_[pin] = kPlant;
+    refresh(pin, now);
 }
 
 void PinBank::refresh(uint32_t pin, uint64_t now, int depth)
@@ -122,7 +140,7 @@ int PinBank::drive(uint32_t pin, uint32_t mode, uint64_t now, std::string &err)
         bool quad = false;
         for (const Quad &q : quads_)
             quad = quad || q.a == pin || q.b == pin || q.index == pin;
-        ext_[pin] = quad ? kQuad : kNone;
+        ext_[pin] = quad ? kQuad : owned_[pin] ? kPlant : kNone;
     } else {
         ext_[pin] = mode == VB_DRIVE_LOW ? kLow : kHigh;
     }
@@ -195,7 +213,7 @@ void PinBank::quad_schedule(Quad &q)
 
 void PinBank::update_next_event()
 {
-    next_event_ = kNever;
+    next_event_ = agent_ ? agent_->next_event() : kNever;
     for (const Quad &q : quads_)
         next_event_ = std::min(next_event_, q.next);
 }
@@ -212,6 +230,8 @@ void PinBank::run_events(uint64_t now)
             quad_levels(q, t);
             quad_schedule(q);
         }
+        if (agent_ && agent_->next_event() <= t)
+            agent_->run(t);
         update_next_event();
     }
 }
@@ -233,6 +253,12 @@ int PinBank::quad(const vb_quad &in, uint64_t now, std::string &err)
               ": rate must be finite and at most 1e9 counts/s";
         return -EINVAL;
     }
+    for (uint32_t p : {in.pin_a, in.pin_b, in.pin_index})
+        if (p != UINT32_MAX && owned_[p]) {
+            err = "quadrature source: I/O pin " + std::to_string(p) +
+                  " is driven by the machine model (vboard --machine)";
+            return -EINVAL;
+        }
     Quad *q = nullptr;
     for (Quad &e : quads_)
         if (e.a == in.pin_a)
@@ -244,7 +270,7 @@ int PinBank::quad(const vb_quad &in, uint64_t now, std::string &err)
         // Pins the new source no longer uses stop being source pins.
         for (uint32_t old : {q->b, q->index})
             if (old != UINT32_MAX && old != in.pin_b && old != in.pin_index && ext_[old] == kQuad) {
-                ext_[old] = kNone;
+                ext_[old] = owned_[old] ? kPlant : kNone;
                 refresh(old, now);
             }
     }

@@ -29,6 +29,21 @@
 
 namespace vb {
 
+// Something outside the FPGA that moves with board time and watches or
+// drives pins: the plant models of a machine (plant/machine.h).  The pin
+// bank calls it in board-time order, before the clock edge that could see
+// its effect, like the quadrature sources.
+class PinAgent {
+  public:
+    virtual ~PinAgent() = default;
+    // Board time of the agent's next own event (PinBank::kNever: none).
+    virtual uint64_t next_event() const = 0;
+    // Run every own event due at or before t.
+    virtual void run(uint64_t t) = 0;
+    // A watched pin changed its level at board time t.
+    virtual void on_pin(uint32_t pin, bool level, uint64_t t) = 0;
+};
+
 class PinBank {
   public:
     static constexpr uint64_t kNever = std::numeric_limits<uint64_t>::max();
@@ -69,6 +84,24 @@ class PinBank {
               std::string &err) const;
     int probe_reset(uint32_t first, uint32_t count, uint64_t now, std::string &err);
 
+    // ---- plant models (vboard --machine) -------------------------------------
+    // Attach the agent (one; nullptr detaches).  It is told about changes of
+    // the pins it watches and sets the level of the pins it owns; an owned
+    // pin reads that level unless the FPGA drives it or a DRIVE / loop
+    // overrides it (the same precedence as a quadrature source).
+    void set_agent(PinAgent *agent);
+    void watch(uint32_t pin) { watch_[pin] = 1; }
+    void own(uint32_t pin, bool level, uint64_t now);
+    void agent_set(uint32_t pin, bool level, uint64_t now)
+    {
+        if (srcval_[pin] != level) {
+            srcval_[pin] = level;
+            refresh(pin, now);
+        }
+    }
+    // The agent's next event changed outside run_events (after attaching).
+    void agent_rescheduled() { update_next_event(); }
+
     bool level(uint32_t pin) const { return (in_[pin >> 5] >> (pin & 31)) & 1u; }
 
   private:
@@ -95,7 +128,7 @@ class PinBank {
         uint64_t next;     // next count time
         bool running;
     };
-    enum Ext : uint8_t { kNone = 0, kLow = 1, kHigh = 2, kLooped = 3, kQuad = 4 };
+    enum Ext : uint8_t { kNone = 0, kLow = 1, kHigh = 2, kLooped = 3, kQuad = 4, kPlant = 5 };
 
     void apply_fpga(const uint32_t *out, const uint32_t *oe, uint64_t now);
     bool compute(uint32_t pin) const;
@@ -124,6 +157,9 @@ class PinBank {
     std::vector<Loop> loops_;
     std::vector<Quad> quads_;
     uint64_t next_event_ = kNever;
+    PinAgent *agent_ = nullptr;
+    std::vector<uint8_t> watch_;  // 1: changes go to the agent
+    std::vector<uint8_t> owned_;  // 1: the agent sets this pin's level
 };
 
 } // namespace vb

@@ -2,6 +2,8 @@
 //
 // server.cpp - the vboard socket server (server.h, docs/vboard-protocol.md).
 #include "server.h"
+
+#include "plant/machine.h"
 #include "vcd2fst.h"
 
 #include <cerrno>
@@ -46,6 +48,7 @@ const char *type_name(uint16_t t)
     case VB_LOOP: return "LOOP";
     case VB_PROBE_RESET: return "PROBE_RESET";
     case VB_DUMP: return "DUMP";
+    case VB_PLANT: return "PLANT";
     default: return "?";
     }
 }
@@ -332,6 +335,8 @@ Server::Reply Server::dispatch(Conn &c, const vb_header &h, const uint8_t *p, si
     Reply jumped;
     if (!advance_lockstep(c, h.time_ns, jumped))
         return jumped;
+    if (plant_ && lockstep_)
+        plant_->on_request(h.time_ns, board_.now_ns());
     switch (h.type) {
     case VB_HELLO: return r_hello();
     case VB_READ: return r_read(p, n);
@@ -346,6 +351,7 @@ Server::Reply Server::dispatch(Conn &c, const vb_header &h, const uint8_t *p, si
     case VB_QUAD: return r_quad(p, n);
     case VB_LOOP: return r_loop(p, n);
     case VB_DUMP: return r_dump(p, n);
+    case VB_PLANT: return r_plant(p, n);
     default: {
         char b[80];
         std::snprintf(b, sizeof b, "unknown request type 0x%02x", h.type);
@@ -601,6 +607,20 @@ Server::Reply Server::r_dump(const uint8_t *p, size_t n)
     r.status = board_.dump(on != 0, path, err);
     if (r.status < 0)
         r.data = msg_bytes(err);
+    return r;
+}
+
+Server::Reply Server::r_plant(const uint8_t *p, size_t n)
+{
+    if (!plant_)
+        VB_FAIL(-ENOTSUP, "PLANT: no machine is attached to this board (vboard --machine FILE)");
+    std::string cmd(reinterpret_cast<const char *>(p), n);
+    if (cmd.find('\0') != std::string::npos)
+        VB_FAIL(-EINVAL, "PLANT: the command contains a NUL byte");
+    Reply r;
+    std::string reply, err;
+    r.status = plant_->command(cmd, board_.now_ns(), reply, err);
+    r.data = r.status < 0 ? msg_bytes(err) : std::vector<uint8_t>(reply.begin(), reply.end());
     return r;
 }
 

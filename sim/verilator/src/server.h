@@ -11,6 +11,10 @@
 
 #include "board.h"
 
+namespace vb::plant {
+class Machine;
+}
+
 namespace vb {
 
 struct ServerOptions {
@@ -43,6 +47,9 @@ class Server {
     // socket the caller drains.  false when the connection would be closed.
     // For the protocol fuzz target: the same path as bytes from a socket.
     bool serve_bytes(int fd, const uint8_t *bytes, size_t n);
+    // The machine behind the pins (vboard --machine): VB_PLANT requests and
+    // one trace point per host request.
+    void set_plant(plant::Machine *m) { plant_ = m; }
 
   private:
     struct Conn {
@@ -84,6 +91,7 @@ class Server {
     Reply r_dump(const uint8_t *p, size_t n);
     Reply r_epp(const uint8_t *p, size_t n);
     Reply r_stall(const uint8_t *p, size_t n);
+    Reply r_plant(const uint8_t *p, size_t n);
 
     Board &board_;
     ServerOptions opt_;
@@ -94,6 +102,7 @@ class Server {
     uint64_t fr_wall0_ = 0, fr_board0_ = 0; // free-running reference point
     int signal_fd_ = -1;
     bool stopping_ = false; // a signal arrived while a request ran
+    plant::Machine *plant_ = nullptr;
 };
 
 // Error reply helper.

@@ -104,6 +104,11 @@ enum vb_type {
     /* --- waveforms ----------------------------------------------------- */
     VB_DUMP = 0x60,        /* req: u32 on, then a path (UTF-8, to the end of
                               the payload; .vcd or .fst); rep: none */
+
+    /* --- the machine behind the pins (vboard --machine) ------------------ */
+    VB_PLANT = 0x70,       /* req: a text command (UTF-8, the whole payload):
+                              "status", "trace PATH", "trace off";
+                              rep: JSON text (docs/vboard-machine.md) */
 };
 
 /* ---- VB_HELLO ----------------------------------------------------------- */
@@ -177,7 +182,8 @@ struct vb_pin {
     uint8_t oe;              /* the FPGA drives it */
     uint8_t ext;             /* 0 not driven from outside, 1 driven low,
                                 2 driven high, 3 looped from another pin,
-                                4 quadrature source */
+                                4 quadrature source, 5 the machine model
+                                (vboard --machine) */
     uint8_t reserved;
     uint32_t rising;         /* edge counters since reset/probe reset */
     uint32_t falling;
