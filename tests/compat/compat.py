@@ -323,6 +323,9 @@ def _parse_output(out: str, by_name: dict[str, FileResult], res: ConfigResult) -
             continue
         fr.errors += 1
         cause = _cause(line, _context(recent))
+        nb = re.search(r"no virtual board for '([^']+)'", fr.note)
+        if nb and "insmod for hm2_pci failed" in line:
+            cause = f"board {nb.group(1)}: no virtual board (hm2_pci finds no card)"
         if cause not in fr.causes:
             fr.causes.append(cause)
         if fr.status != "failed":

@@ -135,6 +135,9 @@ class Context:
     # programs of the configuration that belong to a removed part
     # (see program_part), by name
     programs: dict[str, str] = field(default_factory=dict)
+    # signals only removed lines created, with the part (a later `sets` of
+    # one goes too; a kept `net` that creates it again revives it)
+    dead_signals: dict[str, str] = field(default_factory=dict)
 
     def owner(self, name: str) -> str | None:
         """The removed part a pin/param/function name belongs to, or None."""
@@ -253,6 +256,7 @@ def _rewrite_net(orig: list[str], res: list[str], ctx: Context) -> Action:
     names = ", ".join(r for r, _ in dropped)
     kept = [(a, o) for a, o, r in items if not ctx.owner(r)]
     if not kept:
+        ctx.dead_signals.setdefault(res[1], part)
         return Action("remove", part, f"net of {names} only")
     words = orig[:2] + [w for a, o in kept for w in ((a, o) if a else (o,))]
     return Action("rewrite", part, f"without {names}", " ".join(words))
@@ -269,6 +273,10 @@ def classify(line: str, ini: Ini, ctx: Context) -> Action:
     flat = _words(" ".join(res))
     if cmd == "loadrt" and len(flat) > 1:
         mod = flat[1]
+        # the module named by a missing INI key keeps its role
+        missing = INI_REF.fullmatch(mod)
+        if missing and (missing.group(2) or missing.group(4)) == "KINEMATICS":
+            return Action("remove", "kinematics", f"loadrt {mod} (no such INI value)")
         if mod == "motmod":
             return Action(
                 "rewrite",
@@ -304,8 +312,13 @@ def classify(line: str, ini: Ini, ctx: Context) -> Action:
     if cmd == "addf" and len(flat) > 1:
         part = ctx.owner(flat[1])
         return Action("remove", part, f"addf {flat[1]}") if part else KEEP
-    if cmd in ("net",) and len(orig) > 2:
-        return _rewrite_net(orig, res, ctx)
+    if cmd == "net" and len(orig) > 2:
+        action = _rewrite_net(orig, res, ctx)
+        if action.kind != "remove":
+            ctx.dead_signals.pop(res[1], None)
+        return action
+    if cmd in ("sets", "gets", "stype") and len(flat) > 1 and flat[1] in ctx.dead_signals:
+        return Action("remove", ctx.dead_signals[flat[1]], f"{cmd} {flat[1]} (its net was removed)")
     if cmd in HAL_COMMANDS_WITH_OBJECTS and len(flat) > 1:
         part = ctx.owner(flat[1])
         return Action("remove", part, f"{cmd} {flat[1]}") if part else KEEP

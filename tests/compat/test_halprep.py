@@ -204,3 +204,22 @@ def test_programs_of_the_configuration() -> None:
     ctx.programs["mill"] = "GUI"
     assert act("loadusr -W ./mill", ctx).part == "GUI"
     assert act("net x mill.x <= and2.0.out", ctx).text == "net x <= and2.0.out"
+
+
+def test_signals_of_removed_nets() -> None:
+    """A signal only removed lines created is gone: its sets goes too, until
+    a kept net creates it again."""
+    ctx = hp.Context()
+    assert act("net :x-off gui.x_offset", hp.Context()).kind == "keep"  # unknown comp: kept
+    ctx.prefixes["gui."] = "GUI"
+    assert act("net :x-off gui.x_offset", ctx).kind == "remove"
+    a = act("sets :x-off -20", ctx)
+    assert (a.kind, a.part) == ("remove", "GUI")
+    assert act("net :x-off and2.0.in0", ctx).kind == "keep"
+    assert act("sets :x-off 1", ctx).kind == "keep"
+
+
+def test_kinematics_line_with_missing_ini_value() -> None:
+    a = act("loadrt [NOPE]KINEMATICS")
+    assert (a.kind, a.part) == ("remove", "kinematics")
+    assert act("loadrt [NOPE]OTHER").kind == "keep"
