@@ -27,17 +27,19 @@ FUNCTION(_) {
     double d = in1;
     double band = deadband > DIV2_MIN_DIVISOR ? deadband : DIV2_MIN_DIVISOR;
     if (fabs(d) < band) {
-        double used = d >= 0 ? band : -band;
+        int neg = !(d >= 0);
         if (!in_band) {
             rtapi_print_msg(RTAPI_MSG_WARN,
                             "%s: divisor in1 = %g is within the deadband, %g is used instead: "
                             "increase in1 or lower deadband\n",
-                            name, d, used);
+                            name, d, neg ? -band : band);
             in_band = 1;
         }
-        d = used;
+        /* -in0 / band rather than in0 / -band: the same number, and a nan
+         * dividend comes out as -nan, as in LinuxCNC 2.9 */
+        out = neg ? -in0 / band : in0 / band;
     } else {
         in_band = 0;
+        out = in0 / d;
     }
-    out = in0 / d;
 }

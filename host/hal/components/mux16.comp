@@ -24,15 +24,18 @@ FUNCTION(_) {
     }
     if (suppress_no_input && b == 0)
         return;
+    /* Debounce as LinuxCNC 2.9 does it: the timer runs while the selection
+     * differs from the one in use and is cleared only when a new selection
+     * is taken; a selection that returns to the one in use just stops it.
+     * While a new selection waits, the outputs are left alone. */
     if (b != selected) {
         if (elapsed >= debounce_time) {
             selected = b;
             elapsed = 0;
         } else {
             elapsed = elapsed + fperiod;
+            return;
         }
-    } else {
-        elapsed = 0;
     }
     double v = in(selected & 15);
     out_f = v;

@@ -195,19 +195,25 @@ static void muxgen_update(void *arg, long period) {
         return;
     if (sel > 0xffffffffu)
         sel = 0xffffffffu;
-    /* A new selection is taken once it has differed from the one in use
-     * for debounce-us (measured from the first period it differed). */
+    /* Debounce as LinuxCNC 2.9 does it: a new selection is taken once it has
+     * differed from the one in use for debounce-us (counted from the first
+     * period it differed, and from 0 again whenever the selection returns
+     * to the one in use).  While a new selection waits, the output is left
+     * alone. */
     if (sel != selected) {
         if (stable_ns >= (long long)debounce_us * 1000) {
             selected = (hal_u32_t)sel;
             stable_ns = 0;
+            elapsed = 0;
         } else {
             stable_ns += period;
+            elapsed = (hal_u32_t)(stable_ns / 1000);
+            return;
         }
     } else {
         stable_ns = 0;
+        elapsed = 0;
     }
-    elapsed = (hal_u32_t)(stable_ns / 1000);
     /* past the last input: the last input */
     hal_u32_t k = selected < (hal_u32_t)size ? selected : (hal_u32_t)size - 1;
     muxgen_copy(in_type, out_type, inputs[k], output);

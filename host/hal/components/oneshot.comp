@@ -12,13 +12,15 @@ param rw bit retriggerable = TRUE "A trigger during a pulse starts it again";
 param rw bit rising = TRUE "Trigger on rising edges";
 param rw bit falling = FALSE "Trigger on falling edges";
 variable int last_in;
+variable double timer;
 function _ "Produce output pulses from input edges";
 license "GPL";
 ;;
 if (reset) {
-    /* out goes low at once; the pulse is over, so a trigger right after
-     * the reset starts a new one, and an input still high counts as a new
-     * rising edge */
+    /* out goes low at once and the pulse is over (the time-left pin keeps
+     * showing where it was until the next run without reset); an input
+     * still high after the reset counts as a new rising edge */
+    timer = 0;
     out = 0;
     out_not = 1;
     last_in = 0;
@@ -27,11 +29,12 @@ if (reset) {
 int now = in;
 int trig = (rising && now && !last_in) || (falling && !now && last_in);
 last_in = now;
-if (trig && (retriggerable || !out)) {
-    time_left = width;
-} else if (time_left > 0) {
-    double t = time_left - fperiod;
-    time_left = t > 0 ? t : 0;
+if (trig && (retriggerable || timer <= 0)) {
+    timer = width;
+} else if (timer > 0) {
+    double t = timer - fperiod;
+    timer = t > 0 ? t : 0;
 }
-out = time_left > 0;
+time_left = timer;
+out = timer > 0;
 out_not = !out;

@@ -8,16 +8,23 @@ pin out u32 seconds "Seconds (0-59)";
 pin out u32 minutes "Minutes (0-59)";
 pin out u32 hours "Hours";
 variable double total;
-variable int was_active;
+variable int in_cycle;
 function _;
 license "GPL";
 ;;
-int active = start || pause;
-if (active && !was_active)
-    total = 0;
-if (start && !pause)
+/* A cycle starts when timing starts (start TRUE, pause FALSE) with no
+ * cycle in progress, and ends when start and pause are both FALSE; pause
+ * holds the time within a cycle, even if start drops meanwhile (LinuxCNC
+ * 2.9's behaviour, measured with sampler). */
+if (start && !pause) {
+    if (!in_cycle) {
+        total = 0;
+        in_cycle = 1;
+    }
     total += fperiod;
-was_active = active;
+} else if (!start && !pause) {
+    in_cycle = 0;
+}
 unsigned long long s = (unsigned long long)total;
 seconds = (hal_u32_t)(s % 60);
 minutes = (hal_u32_t)((s / 60) % 60);

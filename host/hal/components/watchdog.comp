@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // watchdog: monitors 1 to 32 inputs for a heartbeat (a change within each
-// input's timeout), LinuxCNC 2.9's names and its num_inputs= load option
+// input's timeout), LinuxCNC 2.9's names, load option and behaviour
 // (docs/watchdog.md).  set-timeouts (floating point, servo thread) turns
-// the timeouts into nanoseconds and re-arms on a rising enable-in; process
-// (no floating point, fast thread) checks the inputs.
+// the timeouts into nanoseconds and arms the watchdog on a rising enable-in
+// when it is not armed (at start, or after a timeout); process (no floating
+// point, fast thread) watches the inputs while enable-in is TRUE and the
+// watchdog is armed.  enable-in FALSE pauses everything: ok-out keeps its
+// value and the time left of each input stands still.
 component watchdog "Monitor inputs for a heartbeat";
-pin in bit enable_in = FALSE "TRUE: monitor; a rising edge re-arms after a timeout";
-pin out bit ok_out = FALSE "TRUE while enabled and no input has timed out";
+pin in bit enable_in = FALSE "TRUE: watch the inputs; a rising edge arms the watchdog when not armed";
+pin out bit ok_out = FALSE "TRUE from arming until an input times out";
 variable int ninputs;
 variable hal_bit_t *input[32];
 variable hal_float_t timeout[32];
@@ -14,7 +17,7 @@ variable long timeout_ns[32];
 variable long left_ns[32];
 variable int last_input[32];
 variable int last_enable;
-variable int fault;
+variable int ok;
 function process nofp "Check the inputs for changes; clear ok-out on a timeout";
 function set_timeouts "Convert the timeouts to ns; re-arm on a rising enable-in";
 option singleton yes;
@@ -59,31 +62,31 @@ FUNCTION(set_timeouts) {
         timeout_ns[i] = (long)(t * 1e9);
     }
     int en = enable_in;
-    if (en && !last_enable) {
-        fault = 0;
-        for (int i = 0; i < ninputs; i++) {
+    if (en && !last_enable && !ok) {
+        /* (re-)arm: every input gets its full timeout again */
+        for (int i = 0; i < ninputs; i++)
             left_ns[i] = timeout_ns[i];
-            last_input[i] = *input[i];
-        }
+        ok = 1;
+        ok_out = 1;
     }
     last_enable = en;
 }
 
 FUNCTION(process) {
-    if (!enable_in) {
-        ok_out = 0;
+    /* Disabled or timed out: nothing is watched and nothing changes (not
+     * even the input history), as in LinuxCNC 2.9. */
+    if (!enable_in || !ok)
         return;
-    }
     for (int i = 0; i < ninputs; i++) {
         int v = *input[i];
         if (v != last_input[i]) {
             last_input[i] = v;
             left_ns[i] = timeout_ns[i];
-        } else if (left_ns[i] >= 0) {
+        } else {
             left_ns[i] -= period;
             if (left_ns[i] < 0)
-                fault = 1;
+                ok = 0;
         }
     }
-    ok_out = !fault;
+    ok_out = ok;
 }
