@@ -20,7 +20,8 @@ set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build=${HM_BUILD:-$root/build}
-n=${COMPONENTS_BENCH_N:-500}
+n_all=${COMPONENTS_BENCH_N:-500}
+n=$n_all
 samples=${HAL_BENCH_SAMPLES:-200}
 period=100000
 tmp=$(mktemp -d)
@@ -74,23 +75,26 @@ lcnc() {
     fi
 }
 
-echo "components: clocks per function call, $n instances in a ${period} ns thread," \
+echo "components: clocks per function call, up to $n_all instances in a ${period} ns thread," \
      "median of $samples periods"
-# name, load args, setp PIN:VALUE, instance prefix, input pin
-while read -r comp args setup prefix inpin; do
+# name, load args, setp PIN:VALUE, instance prefix, input pin, most instances
+while read -r comp args setup prefix inpin most; do
     [ "$args" = - ] && args=""
     [ "$setup" = - ] && setup=""
+    # LinuxCNC's HAL memory holds 500 lut5 but not 500 mux16
+    n=$(( most < n_all ? most : n_all ))
     gen "$comp" "$args count=$n" "$setup" "$prefix" "$inpin" > "$tmp/b.hal"
     o=$(ours 0)
     t=$(ours 1)
     l=$(lcnc)
-    python3 - "$comp" "$o" "$t" "$l" <<'PY'
+    python3 - "$comp" "$o" "$t" "$l" "$n" <<'PY'
 import sys
 name, o, t, l = sys.argv[1], *(float(x) for x in sys.argv[2:5])
-print(f"  {name:12s} ours {o:6.2f}   ours+t {t:6.2f}   LinuxCNC 2.9 {l:6.2f}"
+n = int(sys.argv[5])
+print(f"  {name:6s} x{n:4d} ours {o:6.2f}   ours+t {t:6.2f}   LinuxCNC 2.9 {l:6.2f}"
       f"   (ours/LinuxCNC {o / l:.2f}, ours+t/LinuxCNC {t / l:.2f}, goal <= 0.5)")
 PY
 done <<'LIST'
-lut5 - function:0x96696996 lut5 in-0
-mux16 - use-graycode:TRUE mux16 sel0
+lut5 - function:0x96696996 lut5 in-0 500
+mux16 - use-graycode:TRUE mux16 sel0 200
 LIST
