@@ -16,6 +16,23 @@
 #             (COMPONENTS_BENCH_LCNC=0 leaves it out)
 # Goal: ours <= 0.5 x LinuxCNC.  The inputs change every period (a streamer
 # is not needed: siggen's clock drives in-0 of every lut5 through a net).
+#
+# Then the servo components (bench.py): pid.N.do-pid-calcs,
+# stepgen.make-pulses, encoder.update-counters and pwmgen.make-pulses, each
+# HAL file with three threads of about 100 us (100, 101 and 103, so they
+# seldom wake during each other's run): `f` with the measured functions (16
+# pid loops; one make-pulses or update-counters serving 16 or 8 channels),
+# `base` with as many calls of and2, and `drive` with what feeds them
+# (siggen; stepgens whose quadrature the encoder counts; update-freq,
+# pwmgen.update) and a sampler recording the two threads' run times every
+# period.  Per call = (mean of the middle half of f - the same of base) /
+# calls: the function's own cost, HAL's dispatch and per-function timing
+# cancelling (bench/hal compares those).  The session runs on one CPU (the
+# last; COMP_BENCH_CPU=N or `any`), as LinuxCNC's realtime threads do; the
+# figure is the median of COMP_BENCH_REPS (5) runs alternating ours and
+# LinuxCNC, each of HAL_BENCH_SAMPLES_SERVO (3000) periods, with the range.
+#
+#   bench/components/run.sh [pid stepgen encoder pwmgen]   (default: all four)
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
@@ -98,3 +115,6 @@ done <<'LIST'
 lut5 - function:0x96696996 lut5 in-0 500
 mux16 - use-graycode:TRUE mux16 sel0 200
 LIST
+
+HAL_BENCH_SAMPLES=${HAL_BENCH_SAMPLES_SERVO:-3000} \
+    python3 "$here/bench.py" "$build/bin/halrun" "$build/lib/rtlib" "$@"

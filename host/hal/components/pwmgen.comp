@@ -10,6 +10,7 @@ function make_pulses nofp "Makes the pulses (run it in a fast thread)";
 function update "Turns value into a duty cycle, checks the settings";
 variable int nchan;
 variable long make_period;
+variable pwmgen_hot_t hot[8];
 variable pwmgen_chan_t ch[8];
 option singleton;
 option rtapi_app no;
@@ -24,34 +25,34 @@ RTAPI_MP_ARRAY_INT(output_type, PWM_MAX_CHAN, "output types for up to 8 channels
 
 static int cfg_nchan;
 
-#define PWM_PIN(kind, dir, field, suffix)                                                 \
-    if ((r = hal_pin_##kind##_newf(dir, &c->field, comp_id, "pwmgen.%d." suffix, k)) != 0) \
+#define PWM_PIN(kind, dir, field, suffix)                                               \
+    if ((r = hal_pin_##kind##_newf(dir, &(field), comp_id, "pwmgen.%d." suffix, k)) != 0) \
         return r
 
-static int make_channel(pwmgen_chan_t *c, int k)
+static int make_channel(pwmgen_hot_t *h, pwmgen_chan_t *c, int k)
 {
     int r;
-    c->type = output_type[k];
-    PWM_PIN(float, HAL_IN, value, "value");
-    PWM_PIN(bit, HAL_IN, enable, "enable");
-    PWM_PIN(float, HAL_IO, scale, "scale");
-    PWM_PIN(float, HAL_IO, offset, "offset");
-    PWM_PIN(bit, HAL_IO, dither, "dither-pwm");
-    PWM_PIN(float, HAL_IO, freq, "pwm-freq");
-    PWM_PIN(float, HAL_IO, min_dc, "min-dc");
-    PWM_PIN(float, HAL_IO, max_dc, "max-dc");
-    PWM_PIN(float, HAL_OUT, curr_dc, "curr-dc");
-    if (c->type == 2) {
-        PWM_PIN(bit, HAL_OUT, out_a, "up");
-        PWM_PIN(bit, HAL_OUT, out_b, "down");
+    h->type = output_type[k];
+    PWM_PIN(float, HAL_IN, c->value, "value");
+    PWM_PIN(bit, HAL_IN, c->enable, "enable");
+    PWM_PIN(float, HAL_IO, c->scale, "scale");
+    PWM_PIN(float, HAL_IO, c->offset, "offset");
+    PWM_PIN(bit, HAL_IO, c->dither, "dither-pwm");
+    PWM_PIN(float, HAL_IO, c->freq, "pwm-freq");
+    PWM_PIN(float, HAL_IO, c->min_dc, "min-dc");
+    PWM_PIN(float, HAL_IO, c->max_dc, "max-dc");
+    PWM_PIN(float, HAL_OUT, c->curr_dc, "curr-dc");
+    if (h->type == 2) {
+        PWM_PIN(bit, HAL_OUT, h->out_a, "up");
+        PWM_PIN(bit, HAL_OUT, h->out_b, "down");
     } else {
-        PWM_PIN(bit, HAL_OUT, out_a, "pwm");
-        if (c->type == 1)
-            PWM_PIN(bit, HAL_OUT, out_b, "dir");
+        PWM_PIN(bit, HAL_OUT, h->out_a, "pwm");
+        if (h->type == 1)
+            PWM_PIN(bit, HAL_OUT, h->out_b, "dir");
     }
     *c->scale = 1.0;
     *c->max_dc = 1.0;
-    pwm_init(&c->p);
+    pwm_init(&c->p, &h->q);
     return 0;
 }
 
@@ -59,7 +60,7 @@ EXTRA_SETUP() {
     make_period = PWM_NO_PERIOD;
     nchan = cfg_nchan;
     for (int k = 0; k < cfg_nchan; k++) {
-        int r = make_channel(&ch[k], k);
+        int r = make_channel(&hot[k], &ch[k], k);
         if (r != 0)
             return r;
     }
@@ -69,23 +70,25 @@ EXTRA_SETUP() {
 FUNCTION(make_pulses) {
     make_period = period;
     for (int k = 0; k < nchan; k++) {
-        pwmgen_chan_t *c = &ch[k];
-        pwm_make_pulses(&c->p, period);
-        if (c->type == 2) {
-            *c->out_a = c->p.out && !c->p.direction;
-            *c->out_b = c->p.out && c->p.direction;
+        pwmgen_hot_t *h = &hot[k];
+        pwm_make_pulses(&h->q, period);
+        bool out = h->q.out, dir = h->q.direction;
+        if (h->type == 2) {
+            *h->out_a = out & !dir;
+            *h->out_b = out & dir;
         } else {
-            *c->out_a = c->p.out;
+            *h->out_a = out;
         }
     }
 }
 
 FUNCTION(update) {
     for (int k = 0; k < nchan; k++) {
+        pwmgen_hot_t *h = &hot[k];
         pwmgen_chan_t *c = &ch[k];
         pwm_settings_t s = {*c->freq, *c->max_dc, *c->min_dc, *c->scale};
-        pwm_update(&c->p, make_period, &s, *c->value, *c->offset, *c->enable, *c->dither,
-                   c->type != 0);
+        pwm_update(&c->p, &h->q, make_period, &s, *c->value, *c->offset, *c->enable, *c->dither,
+                   h->type != 0);
         /* 2.9 writes corrected settings back to their pins (NaN stays NaN) */
         if (s.freq != *c->freq)
             *c->freq = s.freq;
@@ -96,8 +99,8 @@ FUNCTION(update) {
         if (s.scale != *c->scale)
             *c->scale = s.scale;
         *c->curr_dc = c->p.curr_dc;
-        if (c->type == 1)
-            *c->out_b = c->p.direction;
+        if (h->type == 1)
+            *h->out_b = h->q.direction;
     }
 }
 

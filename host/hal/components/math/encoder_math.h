@@ -60,9 +60,6 @@ typedef struct {
     double position, position_latched, position_interp, velocity;
 } enc_t;
 
-/* Quadrature states in forward order: index of (A | B << 1). */
-static const unsigned char enc_phase[4] = {0, 1, 3, 2};
-
 static inline void enc_init(enc_t *e)
 {
     *e = (enc_t){0};
@@ -70,20 +67,18 @@ static inline void enc_init(enc_t *e)
     e->recip = 1.0;
 }
 
-/* Count change for a move from inputs `from` to `to` (A | B << 1). */
+/* Count change for a move from inputs `from` to `to` (A | B << 1), indexed
+ * [x4][from << 2 | to]: forward (A leads B: 00 10 11 01) +1, back -1, both
+ * inputs changed 0; x1 counts only between the 00 and 10 states.  A table,
+ * as the change is irregular and a branch on it mispredicted often. */
+static const signed char enc_steps[2][16] = {
+    {0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {0, 1, -1, 0, -1, 0, 0, 1, 1, 0, 0, -1, 0, -1, 1, 0},
+};
+
 static inline int enc_decode(unsigned from, unsigned to, bool x4)
 {
-    int step = (enc_phase[to] - enc_phase[from]) & 3;
-    if (step == 2 || step == 0)
-        return 0;
-    if (x4)
-        return step == 1 ? 1 : -1;
-    /* x1: only between the 00 and 10 states */
-    if (step == 1 && from == 0 && to == 1)
-        return 1;
-    if (step == 3 && from == 1 && to == 0)
-        return -1;
-    return 0;
+    return enc_steps[x4][(from << 2 | to) & 15];
 }
 
 /* One update-counters period. */
@@ -98,12 +93,12 @@ static inline void enc_update(enc_t *e, bool a, bool b, bool z, bool latch_in,
     else
         d = enc_decode(e->ab, ab, x4);
     e->ab = (unsigned char)ab;
-    if (d != 0) {
-        e->raw = (int32_t)((uint32_t)e->raw + (uint32_t)d);
-        e->ev.raw = e->raw;
-        e->ev.stamp = e->timebase;
-        e->ev.counted = true;
-    }
+    /* without a branch on d (counts come at irregular periods); ev.raw is
+     * raw, which only a count changes */
+    e->raw = (int32_t)((uint32_t)e->raw + (uint32_t)d);
+    e->ev.raw = e->raw;
+    e->ev.stamp = d != 0 ? e->timebase : e->ev.stamp;
+    e->ev.counted |= d != 0;
     if (z && !e->old_z && e->index_armed) {
         e->ev.index_raw = e->raw;
         e->ev.indexed = true;

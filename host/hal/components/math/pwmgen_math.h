@@ -34,16 +34,22 @@ enum { PWM_DISABLED, PWM_PURE, PWM_DITHER, PWM_PDM };
 /* The make-pulses period before make-pulses has run. */
 #define PWM_NO_PERIOD (-1L)
 
+/* What make-pulses uses, kept small: the component keeps these of all
+ * channels together, so a make-pulses call touches few cache lines. */
 typedef struct {
-    int mode;
     int32_t period;        /* PWM period, ns (PDM: the make-pulses period) */
-    int32_t periods;       /* pure PWM: make-pulses periods per PWM period */
-    double periods_recip;
     int32_t high_time;     /* ns high per PWM period (PDM: per make-pulses period) */
     int32_t period_timer;  /* ns into the PWM period */
     int32_t high_timer;    /* ns high so far (dither, PDM: high time owed) */
+    uint8_t mode;
     bool out;              /* pulse output */
     bool direction;        /* negative duty cycle */
+} pwm_pulse_t;
+
+/* What update keeps besides. */
+typedef struct {
+    int32_t periods;       /* pure PWM: make-pulses periods per PWM period */
+    double periods_recip;
     double old_freq, old_scale, scale_recip;
     long old_periodns;
     double curr_dc;
@@ -54,10 +60,11 @@ typedef struct {
     double freq, max_dc, min_dc, scale;
 } pwm_settings_t;
 
-static inline void pwm_init(pwm_t *p)
+static inline void pwm_init(pwm_t *p, pwm_pulse_t *q)
 {
     *p = (pwm_t){0};
-    p->mode = PWM_DISABLED;
+    *q = (pwm_pulse_t){0};
+    q->mode = PWM_DISABLED;
     p->old_scale = 2.0; /* 2.9 starts here: position-scale 2 set before the first update keeps scale_recip 0 */
     p->scale_recip = 0.0;
 }
@@ -75,44 +82,46 @@ static inline int32_t pwm_wrap(int64_t x)
     return (int32_t)(uint32_t)(uint64_t)x;
 }
 
-static inline void pwm_make_pulses(pwm_t *p, long periodns)
+/* One make-pulses period.  Written without branches on the pulse state
+ * (the output changes at irregular times, a branch on it is mispredicted
+ * often); the same steps as 2.9's. */
+static inline void pwm_make_pulses(pwm_pulse_t *p, long periodns)
 {
-    int32_t dt = pwm_wrap(periodns);
+    uint32_t dt = (uint32_t)periodns;
+    uint32_t if_out = p->out ? dt : 0u;
     switch (p->mode) {
-    case PWM_PURE:
-        if (p->out) {
-            p->high_timer = pwm_wrap((int64_t)p->high_timer + dt);
-            if (p->high_timer >= p->high_time)
-                p->out = false;
-        }
-        p->period_timer = pwm_wrap((int64_t)p->period_timer + dt);
-        if (p->period_timer >= p->period) {
-            p->period_timer = 0;
-            p->high_timer = 0;
-            if (p->high_time > 0)
-                p->out = true;
-        }
+    case PWM_PURE: {
+        /* while high, count the high time; at the end of the PWM period
+         * start the next one (high unless the high time is 0) */
+        int32_t ht = (int32_t)((uint32_t)p->high_timer + if_out);
+        bool out = p->out && ht < p->high_time;
+        int32_t pt = (int32_t)((uint32_t)p->period_timer + dt);
+        bool next = pt >= p->period;
+        p->period_timer = next ? 0 : pt;
+        p->high_timer = next ? 0 : ht;
+        p->out = out | (next & (p->high_time > 0));
         break;
-    case PWM_DITHER:
-        if (p->out) {
-            p->high_timer = pwm_wrap((int64_t)p->high_timer - dt);
-            if (p->high_timer <= 0)
-                p->out = false;
-        }
-        p->period_timer = pwm_wrap((int64_t)p->period_timer + dt);
-        if (p->period_timer >= p->period) {
-            p->period_timer = pwm_wrap((int64_t)p->period_timer - p->period);
-            p->high_timer = pwm_wrap((int64_t)p->high_timer + p->high_time);
-            if (p->high_timer > 0)
-                p->out = true;
-        }
+    }
+    case PWM_DITHER: {
+        /* while high, pay off the high time owed; each PWM period adds
+         * high-time ns to it (the rounding carries over) */
+        int32_t ht = (int32_t)((uint32_t)p->high_timer - if_out);
+        bool out = p->out && ht > 0;
+        int32_t pt = (int32_t)((uint32_t)p->period_timer + dt);
+        bool next = pt >= p->period;
+        int32_t owed = (int32_t)((uint32_t)ht + (uint32_t)p->high_time);
+        p->period_timer = next ? (int32_t)((uint32_t)pt - (uint32_t)p->period) : pt;
+        p->high_timer = next ? owed : ht;
+        p->out = out | (next & (owed > 0));
         break;
-    case PWM_PDM:
-        p->high_timer = pwm_wrap((int64_t)p->high_timer + p->high_time);
-        if (p->out)
-            p->high_timer = pwm_wrap((int64_t)p->high_timer - dt);
-        p->out = p->high_timer > 0;
+    }
+    case PWM_PDM: {
+        /* add the high time of one period, take a period off when high */
+        int32_t acc = (int32_t)((uint32_t)p->high_timer + (uint32_t)p->high_time - if_out);
+        p->high_timer = acc;
+        p->out = acc > 0;
         break;
+    }
     default:
         p->out = false;
         p->high_timer = 0;
@@ -122,11 +131,11 @@ static inline void pwm_make_pulses(pwm_t *p, long periodns)
 }
 
 /* Period and frequency for a new mode or pwm-freq. */
-static inline void pwm_set_freq(pwm_t *p, int mode, double *freq, long periodns)
+static inline void pwm_set_freq(pwm_t *p, pwm_pulse_t *q, int mode, double *freq, long periodns)
 {
     if (*freq <= 0.0) {
         *freq = 0.0;
-        p->period = pwm_wrap(periodns);
+        q->period = pwm_wrap(periodns);
         return;
     }
     if (*freq < 0.5)
@@ -136,20 +145,21 @@ static inline void pwm_set_freq(pwm_t *p, int mode, double *freq, long periodns)
     if (mode == PWM_PURE) {
         p->periods = pwm_to_int((1.0e9 / *freq) / (double)periodns + 0.5);
         p->periods_recip = 1.0 / p->periods;
-        p->period = pwm_wrap((int64_t)p->periods * periodns);
-        *freq = 1.0e9 / p->period;
+        q->period = pwm_wrap((int64_t)p->periods * periodns);
+        *freq = 1.0e9 / q->period;
     } else {
-        p->period = pwm_to_int(1.0e9 / *freq);
+        q->period = pwm_to_int(1.0e9 / *freq);
     }
 }
 
 /*
  * One update: `s` holds pwm-freq, max-dc, min-dc and scale, corrected in
  * place; `bipolar` is false for output type 0 (negative duty cycles become
- * 0).  Sets p->curr_dc and p->direction.
+ * 0).  Sets p->curr_dc and q->direction.
  */
-static inline void pwm_update(pwm_t *p, long periodns, pwm_settings_t *s, double value,
-                              double offset, bool enable, bool dither, bool bipolar)
+static inline void pwm_update(pwm_t *p, pwm_pulse_t *q, long periodns, pwm_settings_t *s,
+                              double value, double offset, bool enable, bool dither,
+                              bool bipolar)
 {
     if (s->max_dc > 1.0)
         s->max_dc = 1.0;
@@ -178,9 +188,9 @@ static inline void pwm_update(pwm_t *p, long periodns, pwm_settings_t *s, double
         p->old_freq = -1.0;
         p->old_periodns = periodns;
     }
-    if (p->mode != mode || s->freq != p->old_freq) {
-        p->mode = PWM_DISABLED;
-        pwm_set_freq(p, mode, &s->freq, periodns);
+    if (q->mode != mode || s->freq != p->old_freq) {
+        q->mode = PWM_DISABLED;
+        pwm_set_freq(p, q, mode, &s->freq, periodns);
         p->old_freq = s->freq;
     }
     double dc = value * p->scale_recip + offset;
@@ -192,7 +202,7 @@ static inline void pwm_update(pwm_t *p, long periodns, pwm_settings_t *s, double
             dc = s->max_dc;
         else if (dc < s->min_dc)
             dc = s->min_dc;
-        p->direction = false;
+        q->direction = false;
         mag = dc;
     } else {
         /* also NaN: direction set, a high time of INT_MIN */
@@ -200,21 +210,21 @@ static inline void pwm_update(pwm_t *p, long periodns, pwm_settings_t *s, double
             dc = -s->max_dc;
         else if (dc > -s->min_dc)
             dc = -s->min_dc;
-        p->direction = true;
+        q->direction = true;
         mag = -dc;
     }
     if (mode == PWM_PURE) {
         int32_t high_periods = pwm_to_int(p->periods * mag + 0.5);
-        p->high_time = pwm_wrap((int64_t)high_periods * periodns);
+        q->high_time = pwm_wrap((int64_t)high_periods * periodns);
         if (dc >= 0.0)
             p->curr_dc = high_periods * p->periods_recip;
         else
             p->curr_dc = pwm_wrap(-(int64_t)high_periods) * p->periods_recip;
     } else {
-        p->high_time = pwm_to_int(p->period * mag + 0.5);
+        q->high_time = pwm_to_int(q->period * mag + 0.5);
         p->curr_dc = dc;
     }
-    p->mode = mode;
+    q->mode = mode;
 }
 
 #endif /* HM_PWMGEN_MATH_H */
