@@ -69,7 +69,8 @@ typedef struct {
     int has_names;        /* names= exists (not with singleton / count_function) */
     int has_personality;
     /* Longest ".suffix" appended to an instance name (pins, params,
-     * function names with their ".tmax-increased"), for up-front checks. */
+     * function names with their ".tmax"; HAL cuts ".tmax-increased" to
+     * fit, as LinuxCNC does), for up-front checks. */
     size_t longest_suffix;
     int (*export_inst)(char *prefix, long extra_arg, long personality);
     void (*extra_cleanup)(void); /* or NULL */

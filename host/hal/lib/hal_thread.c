@@ -22,7 +22,10 @@ int hal_export_funct(const char *name, void (*funct)(void *, long), void *arg, i
     int rc = check_name("function", name);
     if (rc)
         return rc;
-    if (strlen(name) + strlen(".tmax-increased") > HAL_NAME_LEN) {
+    /* NAME.time and NAME.tmax must fit; NAME.tmax-increased is cut at
+     * HAL_NAME_LEN characters, as LinuxCNC 2.9 does (its sample config
+     * shuttle.hal names instances tristate-float.sxp-jog-increment-0). */
+    if (strlen(name) + strlen(".tmax") > HAL_NAME_LEN) {
         ERR("HAL: ERROR: function name '%s' is too long\n", name);
         return -EINVAL;
     }

@@ -72,7 +72,8 @@ def longest_suffix(comp: Component) -> int:
         n = max(n, len(hn) + 1)
     for f in comp.functions:
         hn = hal_name(f.name)
-        n = max(n, (len(hn) + 1 if hn else 0) + len(".tmax-increased"))
+        # NAME.tmax must fit; HAL cuts NAME.tmax-increased as LinuxCNC does
+        n = max(n, (len(hn) + 1 if hn else 0) + len(".tmax"))
     return n
 
 
