@@ -4,7 +4,10 @@
 1. Every ctest test (the C unit tests) runs under valgrind with its own
    command line, environment and working directory as ctest lists them
    (``ctest --show-only=json-v1``).
-2. One HAL session: ``halrun -S`` (the HAL file on stdin) with hostmot2 +
+2. A HAL core session: ``halrun -f`` on the wall clock with two threads,
+   and2/or2/siggen/sampler, nets, aliases, show/save/status/list, delf,
+   unloadrt and unload all (halcmd and rtapi_app under valgrind).
+3. One HAL session: ``halrun -S`` (the HAL file on stdin) with hostmot2 +
    hm2_sim on a virtual 5i20 running SVST8_4 (bin/vboard, not under
    valgrind: it is Verilated C++ and the board, not the host code under
    test), a servo thread with the
@@ -154,11 +157,7 @@ def run_session(build: Path, out: Path) -> list[str]:
         PATH=f"{build / 'bin'}:{env.get('PATH', '')}",
     )
     start = time.monotonic()
-    # The file goes in on stdin, not with -f: a halcmd under valgrind that
-    # starts rtapi_app while it reads a -f file re-reads the file from the
-    # line after the first loadrt (the forked start of rtapi_app disturbs the
-    # shared file offset; `loadrt hm2_sim` then runs twice).  That is a halcmd
-    # defect of its own, not a memory error; stdin is not seekable.
+    # The file goes in on stdin (the core session reads its file with -f).
     with vboard.VBoardProcess(sock, "5i20"), open(work / "session.hal") as hal:
         r = subprocess.run(
             [str(bindir / "halrun"), "-S"],
@@ -190,6 +189,86 @@ def run_session(build: Path, out: Path) -> list[str]:
     return failed
 
 
+CORE_SESSION = """\
+loadrt threads name1=fast period1=1000000 name2=slow period2=2000000
+loadrt and2 count=3
+loadrt or2 names=o1,o2
+loadrt siggen
+loadrt sampler depth=100 cfg=ff
+addf and2.0 fast
+addf and2.1 fast
+addf o1 slow
+addf siggen.0.update slow
+addf sampler.0 slow
+net a and2.0.out => o1.in0 and2.1.in0
+net s siggen.0.sine => sampler.0.pin.0
+net t siggen.0.cosine => sampler.0.pin.1
+newsig x float
+alias pin and2.2.in0 myin
+setp myin 1
+start
+loadusr -w sleep 0.3
+stop
+show
+save all
+status
+list pin -tbit
+delf and2.1 fast
+unalias pin and2.2.in0
+unloadrt or2
+delsig all
+unload all
+"""
+
+
+def run_core_session(build: Path, out: Path) -> list[str]:
+    work = out / "core"
+    bindir = work / "bin"
+    bindir.mkdir(parents=True)
+    shutil.copy(build / "bin" / "halrun", bindir / "halrun")
+    wrapper(bindir / "halcmd", build / "bin" / "halcmd", out, "core-halcmd")
+    wrapper(bindir / "rtapi_app", build / "bin" / "rtapi_app", out, "core-rtapi_app")
+    (work / "core.hal").write_text(CORE_SESSION)
+    env = dict(os.environ)
+    env.pop("HAL_SIMCLOCK", None)
+    env.update(
+        HAL_INSTANCE=f"memcheck-core-{uuid.uuid4().hex[:8]}",
+        HAL_RTAPI_APP=str(bindir / "rtapi_app"),
+        HM_BUILD=str(build),
+        PATH=f"{build / 'bin'}:{env.get('PATH', '')}",
+    )
+    start = time.monotonic()
+    r = subprocess.run(
+        [str(bindir / "halrun"), "-f", str(work / "core.hal")],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=1800,
+    )
+    subprocess.run([str(build / "bin" / "halrun"), "-U"], env=env, capture_output=True)
+    (work / "halrun.out").write_text(r.stdout + r.stderr)
+    failed = []
+    if r.returncode != 0:
+        failed.append(
+            f"HAL core session: halrun exit {r.returncode} (output {work / 'halrun.out'})"
+        )
+    if r.stdout.count("Loaded HAL Components:") != 1:
+        failed.append(f"HAL core session: the file did not run once (output {work / 'halrun.out'})")
+    logs = sorted(out.glob("core-*.log"))
+    rtapi_logs = [p for p in logs if p.name.startswith("core-rtapi_app.")]
+    if len(rtapi_logs) != 1:
+        failed.append(f"HAL core session: {len(rtapi_logs)} rtapi_app runs, expected 1")
+    for log in logs:
+        n = errors_in(log)
+        if n != 0:
+            failed.append(f"HAL core session: {n} valgrind errors in {log}")
+    print(
+        f"  HAL core session               {'ok' if not failed else 'FAILED':<7s}"
+        f" {len(logs)} processes  {time.monotonic() - start:6.1f} s"
+    )
+    return failed
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--build", type=Path, default=Path(os.environ.get("HM_BUILD", ROOT / "build")))
@@ -205,6 +284,8 @@ def main() -> int:
     start = time.monotonic()
     print(f"memcheck: C unit tests under valgrind (logs in {out})")
     failed = run_units(build, out)
+    print("memcheck: a HAL core session under valgrind")
+    failed += run_core_session(build, out)
     print("memcheck: a HAL session with hostmot2 + hm2_sim under valgrind")
     failed += run_session(build, out)
     for f in failed:

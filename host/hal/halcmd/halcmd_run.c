@@ -356,7 +356,7 @@ static void open_error(int top, const char *path, int e)
 
 int halcmd_source(const char *path, int top)
 {
-    FILE *f = fopen(path, "r");
+    FILE *f = fopen(path, "re"); /* children (loadusr) must not share its offset */
     if (f == NULL) {
         int e = errno;
         open_error(top, path, e);

@@ -68,13 +68,14 @@ static int rtapi_app_path(char *buf, size_t len)
 
 /* In the daemon child: no descriptor of the caller survives (a lock or
  * a pipe held open by a daemon hangs whoever waits for it). */
-static void close_inherited_fds(void)
+static void close_inherited_fds(int keep)
 {
     long max = sysconf(_SC_OPEN_MAX);
     if (max < 0 || max > 65536)
         max = 65536;
     for (int fd = 3; fd < max; fd++)
-        close(fd);
+        if (fd != keep)
+            close(fd);
 }
 
 static int start_rtapi_app(void)
@@ -106,6 +107,10 @@ static int start_rtapi_app(void)
         return -e;
     }
     if (pid == 0) {
+        /* Nothing of the caller's open files stays with us: even an _exit
+         * may touch them (valgrind's libc cleanup seeks the shared offset
+         * of halcmd's input file back). */
+        close_inherited_fds(log);
         /* Grandchild becomes the daemon, so nobody has to reap it. */
         if (fork() != 0)
             _exit(0);
@@ -116,8 +121,8 @@ static int start_rtapi_app(void)
         if (log >= 0) {
             dup2(log, 1);
             dup2(log, 2);
+            close(log);
         }
-        close_inherited_fds();
         execl(path, "rtapi_app", (char *)NULL);
         fprintf(stderr, "HAL: ERROR: cannot run %s: %s\n", path, strerror(errno));
         _exit(127);
