@@ -171,8 +171,8 @@ def run(
     with Board(ex.board, ex.machine, out, board_args) as b:
         script, _ = run_script(ex, b.sock, moves, events, after)
         halrun(script, out, {"MACHINE_SOCKET": b.sock})
-        status = b.plant("status")
-    (out / "status.json").write_text(json.dumps(status, indent=1) + "\n")
+    # the machine as the recording ended (before the HAL session was torn down)
+    status = json.loads((out / "status.json").read_text())
     samples = read_samples(out / "samples.txt", ex.columns)
     head, trace = read_trace(out / "trace.csv")
     if len(samples) != len(moves) or len(trace) != len(moves):

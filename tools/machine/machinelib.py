@@ -212,6 +212,7 @@ def run_script(
         s += f"simrun {(n - done) * ex.period_ns}\n"
     s += "setp sampler.0.enable 0\n"
     s += f"loadusr -w {tool('vbplant')} {sock} trace off\n"
+    s += f"loadusr -w {tool('vbplant')} -o status.json {sock} status\n"
     # halsampler writes the last rows after the threads stopped: wait for them
     s += f"loadusr -w {sys.executable} {HERE / 'waitlines.py'} samples.txt {n}\n"
     s += "".join(line + "\n" for line in after)

@@ -2,11 +2,12 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """vbplant: talk to the machine behind a virtual board (docs/vboard-machine.md).
 
-    vbplant SOCKET status          the machine's state and counters (JSON)
+    vbplant [-o FILE] SOCKET status   the machine's state and counters (JSON)
     vbplant SOCKET trace FILE      from now on one CSV row per host servo cycle
     vbplant SOCKET trace off       stop the trace (prints the row count)
 
-Requests carry no time (a probe client): the board does not advance.
+-o FILE writes the reply to FILE instead of stdout.  Requests carry no
+time (a probe client): the board does not advance.
 """
 
 from __future__ import annotations
@@ -45,6 +46,10 @@ def request(path: str, command: str) -> tuple[int, str]:
 
 
 def main(argv: list[str]) -> int:
+    out = None
+    if len(argv) > 2 and argv[1] == "-o":
+        out = argv[2]
+        argv = argv[:1] + argv[3:]
     if len(argv) < 3 or argv[1] in ("-h", "--help"):
         print(__doc__.strip())
         return 0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2
@@ -56,7 +61,15 @@ def main(argv: list[str]) -> int:
     if status < 0:
         print(f"vbplant: {text}", file=sys.stderr)
         return 1
-    print(text)
+    if out is None:
+        print(text)
+        return 0
+    try:
+        with open(out, "w") as f:
+            f.write(text + "\n")
+    except OSError as exc:
+        print(f"vbplant: {out}: {exc}", file=sys.stderr)
+        return 1
     return 0
 
 

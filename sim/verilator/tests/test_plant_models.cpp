@@ -280,10 +280,11 @@ void step_timing()
     s.set_step(false, t + 1000, true);
     t += 6000;
     CHECK(s.position() == 12 && s.counters().dir_hold == 1);
-    // disabled drive: ignored
+    // disabled drive: ignored, timing not checked (its inputs are off)
     s.set_step(true, t, false);
-    s.set_step(false, t + 1000, false);
-    CHECK(s.position() == 12 && s.counters().disabled == 1);
+    s.set_dir(true, t, false);
+    s.set_step(false, t + 10, false);
+    CHECK(s.position() == 12 && s.counters().disabled == 1 && s.counters().violations() == 4);
     CHECK(s.counters().edges == 17);
 
     // Quadrature input: A leads B up.

@@ -225,7 +225,8 @@ bool signal(Table &t, const char *k, Ctx &c, PinRef &ref, bool drives, bool defa
     return !drives || output_pin(t, v, t.key(k), c, ref.pin);
 }
 
-bool encoder(Table &parent, const char *k, Ctx &c, EncoderSpec &e, bool scale, uint64_t &seed)
+bool encoder(Table &parent, const char *k, Ctx &c, EncoderSpec &e, bool scale, bool rotary,
+             uint64_t &seed)
 {
     const Value *v = parent.get(k);
     if (!v)
@@ -237,15 +238,18 @@ bool encoder(Table &parent, const char *k, Ctx &c, EncoderSpec &e, bool scale, u
     if (!signal(t, "a", c, e.a, true, true, true) || !signal(t, "b", c, e.b, true, true, true) ||
         !signal(t, "index", c, e.index, true, true))
         return false;
+    // an encoder on the motor counts per motor revolution; a scale per mm
+    // of the slide, or per revolution of a spindle
+    bool per_mm = scale && !rotary;
     double cpu = 0;
-    if (!t.number(scale ? "counts_per_mm" : "counts_per_rev", cpu, 0, 1e9, true, true))
+    if (!t.number(per_mm ? "counts_per_mm" : "counts_per_rev", cpu, 0, 1e9, true, true))
         return false;
     e.counts_per_unit = cpu;
     int64_t idx = 0;
     if (!t.integer("index_count", idx, 0, INT64_MAX))
         return false;
     double irev = 0;
-    if (scale) {
+    if (per_mm) {
         double every = 0;
         if (!t.number("index_every_mm", every, 0, 1e9))
             return false;
@@ -254,7 +258,7 @@ bool encoder(Table &parent, const char *k, Ctx &c, EncoderSpec &e, bool scale, u
         irev = cpu;
     }
     if (e.index.used() && (irev < 1 || std::fabs(irev - std::round(irev)) > 1e-9))
-        return t.fail(v, t.key(scale ? "index_every_mm" : "counts_per_rev"),
+        return t.fail(v, t.key(per_mm ? "index_every_mm" : "counts_per_rev"),
                       "the index needs a whole number of counts per period (got " +
                           std::to_string(irev) + ")");
     e.enc.counts_per_rev = e.index.used() ? static_cast<int64_t>(std::llround(irev)) : 0;
@@ -552,7 +556,8 @@ bool axis(const Value &v, size_t i, Ctx &c, const std::string &file, std::string
         if (t.has("amplifier"))
             return t.fail(t.get("amplifier"), t.key("amplifier"), "a stepper has a [axis.drive], not an amplifier");
     }
-    if (!encoder(t, "encoder", c, a.encoder, false, seed) || !encoder(t, "scale", c, a.scale, true, seed))
+    if (!encoder(t, "encoder", c, a.encoder, false, a.rotary, seed) ||
+        !encoder(t, "scale", c, a.scale, true, a.rotary, seed))
         return false;
     return t.no_unknown_keys();
 }

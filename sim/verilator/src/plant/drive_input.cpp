@@ -96,6 +96,13 @@ void StepInput::set_step(bool level, uint64_t t, bool enabled)
         int sign = dir_ == dir_negative_ ? -1 : 1;
         c_.edges++;
         c_.commanded += sign;
+        if (!enabled) {
+            // A disabled drive ignores its inputs (no step, no timing check).
+            c_.disabled++;
+            pending_ = false;
+            have_edge_ = false;
+            return;
+        }
         if (need && phase < need) {
             (ended_high ? c_.short_high : c_.short_low)++;
             pending_ = false;
@@ -143,7 +150,7 @@ void StepInput::set_dir(bool level, uint64_t t, bool enabled)
     dir_change_ = t;
     dir_changed_ = true;
     int sign = level == dir_negative_ ? -1 : 1;
-    if (have_edge_ && tm_.dir_hold && t - edge_ < tm_.dir_hold) {
+    if (enabled && have_edge_ && tm_.dir_hold && t - edge_ < tm_.dir_hold) {
         // The drive latches the direction late: the last step goes the new way.
         c_.dir_hold++;
         if (pending_) {
