@@ -192,6 +192,10 @@ def run_script(
     events: (seconds into the recording, HAL line) - fault injection;
     after: lines once the recording is complete."""
     n = len(moves)
+    # halstreamer -W must still be running when it is ready: the file must
+    # not fit the streamer's FIFO (the examples use depth=64)
+    if n <= 64:
+        raise RuntimeError(f"{n} servo periods of moves: a run needs more than 64")
     s = f"source {ex.hal}\n"
     s += "".join(line + "\n" for line in ex.before)
     s += "simrun 20ms\n"
