@@ -16,10 +16,14 @@ from __future__ import annotations
 
 import json
 import math
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
-from machines import NEEDS, read_trace_axis, run, servo_fe_bound, tagged
+from machines import EXAMPLES, NEEDS, ROOT, read_trace_axis, run, servo_fe_bound, tagged
+
+TOOLS = ROOT / "tools" / "machine"
 
 pytestmark = pytest.mark.requires_build(*NEEDS)
 
@@ -162,3 +166,48 @@ def test_runs_are_byte_identical(tmp_path: Path) -> None:
     run("pluto-lathe", tmp_path / "b")
     for f in ("samples.txt", "trace.csv", "status.json", "figures.json"):
         assert (tmp_path / "a" / f).read_bytes() == (tmp_path / "b" / f).read_bytes(), f
+
+
+def test_hm2tune_auto_tunes_a_servo_axis(tmp_path: Path) -> None:
+    # The Pluto lathe's X: identification, pole placement over three
+    # natural frequencies, the pick with <= 1 % overshoot and the smallest
+    # following error; the identified plant against the machine file's
+    # numbers (K = Kt r / (R b + Kt Ke) in mm/s per V, tau = R J / (R b + Kt Ke)).
+    r = subprocess.run(
+        [sys.executable, str(TOOLS / "hm2tune.py"), str(EXAMPLES / "pluto-lathe"), "--axis", "x"]
+        + ["--auto", "--wn", "90,130,250", "--out", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert r.returncode == 0, r.stdout + r.stderr
+    res = json.loads((tmp_path / "tune.json").read_text())
+    rr = 5e-3 / (2 * math.pi)
+    b = 100 * rr * rr
+    k = 0.06 * rr * 1e3 / (1.5 * b + 0.06 * 0.06)
+    tau = 1.5 * (8e-5 + 10 * rr * rr) / (1.5 * b + 0.06 * 0.06)
+    assert res["plant"]["K"] == pytest.approx(k, rel=0.05)
+    assert res["plant"]["tau"] == pytest.approx(tau, rel=0.15)
+    after = res["after"]
+    assert after["overshoot_pct"] <= 1.0
+    assert after["max_fe"] <= res["before"]["max_fe"]
+    assert res["wn"] in (90, 130, 250)
+    assert (tmp_path / "tune-pluto-lathe-x.png").stat().st_size > 10000
+    assert "tuned (wn" in r.stdout and "Pgain=" in r.stdout
+
+
+def test_hm2machine_errors(tmp_path: Path) -> None:
+    bad = tmp_path / "ex"
+    bad.mkdir()
+    (bad / "example.toml").write_text('title = "x"\nboard = "5i20"\n')
+    r = subprocess.run(
+        [sys.executable, str(TOOLS / "hm2machine.py"), str(bad)], capture_output=True, text=True
+    )
+    assert r.returncode == 1 and "example.toml: missing or bad key" in r.stderr
+    r = subprocess.run(
+        [sys.executable, str(TOOLS / "hm2tune.py"), str(EXAMPLES / "stepper-7i43"), "--axis", "x"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert r.returncode == 1 and "samples no pid.error" in r.stderr

@@ -65,6 +65,7 @@ class Example:
     columns: int
     moves: dict[str, list[list[float]]]
     before: list[str] = field(default_factory=list)
+    tune_open_loop: list[str] = field(default_factory=list)
 
     @staticmethod
     def load(path: Path) -> Example:
@@ -99,6 +100,7 @@ class Example:
                 columns=int(d["columns"]),
                 moves={k: d[k]["moves"] for k in ("run", "short") if k in d},
                 before=list(d.get("before", [])),
+                tune_open_loop=list(d.get("tune_open_loop", [])),
             )
         except (KeyError, TypeError, ValueError) as exc:
             raise RuntimeError(f"{f}: missing or bad key: {exc}") from exc
