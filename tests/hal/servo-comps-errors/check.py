@@ -41,6 +41,7 @@ EXPECT = {
     "loadrt pwmgen output_type=1,3": "PWMGEN: ERROR: bad output type '3', channel 1",
     "loadrt pwmgen output_type=0,0,0,0,0,0,0,0,0": "(at most 8)",
     "loadrt pwmgen output_type=x": "`x' invalid for parameter `output_type=x'",
+    "loadrt steptest count=2 names=a": "count= and names= are mutually exclusive",
 }
 MAXVEL = [
     "STEPGEN: Channel 0: The requested maximum velocity of 2000 steps/sec is too high.",

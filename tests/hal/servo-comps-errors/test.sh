@@ -1,6 +1,6 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0-or-later
-# Bad load options of pid, stepgen, encoder and pwmgen: each
+# Bad load options of pid, stepgen, encoder, pwmgen and steptest: each
 # line of cases.txt is loaded in its own session, followed by `show comp`
 # and `show pin`, so checkresult can see the error and that nothing of the
 # failed module was left behind.  Then one session where stepgen's maxvel
