@@ -166,6 +166,16 @@ def test_runs_are_byte_identical(tmp_path: Path) -> None:
     run("pluto-lathe", tmp_path / "b")
     for f in ("samples.txt", "trace.csv", "status.json", "figures.json"):
         assert (tmp_path / "a" / f).read_bytes() == (tmp_path / "b" / f).read_bytes(), f
+    # The lathe's spindle at 40 % of 36 V, through a 2:1 belt: steady speed
+    # w = (Kt V - R Tc) / (R b + Kt Ke) on the motor (Tc, b referred to it),
+    # reached after ~6 mechanical time constants; its encoder (2000 counts
+    # per spindle turn) counted the turns.
+    st = json.loads((tmp_path / "a" / "status.json").read_text())
+    sp = next(a for a in st["axes"] if a["name"] == "spindle")
+    tc, b = 0.02 + 0.1 / 2, 1e-3 / 4
+    w = (0.1 * 14.4 - 0.8 * tc) / (0.8 * b + 0.1 * 0.1)
+    assert sp["unit"] == "rev" and sp["velocity"] == pytest.approx(w / 2 / (2 * math.pi), rel=0.005)
+    assert sp["scale"]["count"] == pytest.approx(sp["position"] * 2000, abs=2)
 
 
 def test_hm2tune_auto_tunes_a_servo_axis(tmp_path: Path) -> None:
