@@ -373,8 +373,9 @@ int do_waitusr_cmd(int argc, char **argv)
     (void)argc;
     hal_q_comp_t c;
     if (hal_q_comp(argv[1], &c) != 0) {
-        halcmd_error("component '%s' not found\n", argv[1]);
-        return -ENOENT;
+        /* as LinuxCNC 2.9: a component that already left is not an error */
+        halcmd_info("component '%s' not found or already exited\n", argv[1]);
+        return 0;
     }
     if (c.realtime) {
         halcmd_error("'%s' is not a user space component\n", argv[1]);

@@ -169,6 +169,32 @@ int hal_q_simclock(void);
 /* The session's current virtual time (ns); wall-clock sessions: monotonic. */
 long long hal_q_time(void);
 
+/* 1 when this session (HAL_INSTANCE) has a segment with a live process,
+ * without creating or attaching to it (a viewer started with no HAL
+ * running says so instead of creating an empty session). */
+int hal_q_session_exists(void);
+
+/* ---- references for lock-free readers ------------------------------------
+ * A reference names the value of a pin, parameter or signal in a form that
+ * any process of the session can read without the HAL mutex, as a realtime
+ * scope must.  hal_q_ref() resolves a name (taking the mutex); the readers
+ * below take no lock, make no system call and follow a pin to whatever
+ * signal it is linked to at the moment of the read.  A reference whose
+ * object is deleted stays safe to read (it reads recycled HAL memory, never
+ * outside the segment): re-resolve names after unloads. */
+typedef struct {
+    unsigned long off; /* session-wide offset of the object */
+    int kind;          /* HAL_Q_PIN, HAL_Q_PARAM or HAL_Q_SIG */
+    hal_type_t type;
+} hal_q_ref_t;
+
+/* kind HAL_Q_PIN, HAL_Q_PARAM or HAL_Q_SIG (pins and parameters also by
+ * alias).  -ENOENT: no such object, -EINVAL: bad kind. */
+int hal_q_ref(hal_q_kind_t kind, const char *name, hal_q_ref_t *ref);
+/* Copy the current values of n references into out[i] (member by the
+ * reference's type; the other bytes of out[i] are zero). */
+void hal_q_ref_read(const hal_q_ref_t *refs, int n, hal_data_u *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,73 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Shared helpers of the halview tests: HAL sessions and a siggen model."""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import subprocess
+import textwrap
+import uuid
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+BUILD = Path(os.environ.get("HM_BUILD", ROOT / "build"))
+BIN = BUILD / "bin"
+HALRUN = BIN / "halrun"
+TOOLS = [BIN / t for t in ("halmeter", "halscope", "halshow", "halweb")]
+BUILT = [HALRUN, BUILD / "lib" / "libhalview.so", BUILD / "lib" / "rtlib" / "scope_rt.so", *TOOLS]
+
+
+def env(instance: str | None = None) -> dict[str, str]:
+    e = dict(os.environ)
+    e["HAL_INSTANCE"] = instance or "hv-" + uuid.uuid4().hex[:10]
+    e["PATH"] = f"{BIN}:{e.get('PATH', '')}"
+    e.pop("HAL_SIMCLOCK", None)
+    return e
+
+
+def halrun(
+    tmp: Path, hal: str, sim: bool = True, timeout: float = 120, instance: str | None = None
+) -> subprocess.CompletedProcess[str]:
+    """Run a HAL file with halrun (-S: simulated clock) in its own session."""
+    (tmp / "test.hal").write_text(textwrap.dedent(hal))
+    args = [str(HALRUN)] + (["-S"] if sim else []) + ["-f", "test.hal"]
+    return subprocess.run(
+        args, cwd=tmp, env=env(instance), text=True, capture_output=True, timeout=timeout
+    )
+
+
+def read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    return rows[0], rows[1:]
+
+
+TWO_PI = 6.2831854  # siggen's constant (host/hal/components/siggen.comp)
+
+
+class Siggen:
+    """One siggen channel, step by step as siggen.comp computes it."""
+
+    def __init__(self, freq: float, amp: float = 1.0, offset: float = 0.0) -> None:
+        self.freq, self.amp, self.offset = freq, amp, offset
+        self.phase = 0.0
+
+    def update(self, period_ns: int) -> dict[str, float]:
+        fperiod = period_ns * 1e-9
+        step = self.freq * fperiod
+        if step > 0.5:
+            step = 0.5
+        self.phase += step
+        if self.phase >= 1.0:
+            self.phase -= 1.0
+        ph, a, o = self.phase, self.amp, self.offset
+        return {
+            "sawtooth": (ph * 2.0 - 1.0) * a + o,
+            "triangle": ((1.0 - ph * 4.0) if ph <= 0.5 else (ph * 4.0 - 3.0)) * a + o,
+            "square": (a + o) if ph > 0.5 else (-a + o),
+            "clock": 1.0 if ph > 0.5 else 0.0,
+            "sine": math.sin(ph * TWO_PI) * a + o,
+            "cosine": math.cos(ph * TWO_PI) * a + o,
+        }
