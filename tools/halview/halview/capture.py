@@ -219,8 +219,10 @@ def capture_roll(
     on_armed: Callable[[], None] | None = None,
     stop: Callable[[], bool] | None = None,
     on_chunk: Callable[[Capture], None] | None = None,
+    keep: bool = True,
 ) -> Capture:
-    """Sample continuously until `records` records (None: until stop())."""
+    """Sample continuously until `records` records (None: until stop()).
+    keep=False hands the records to on_chunk only (a live view)."""
     resolve(scope, cfg)
     nchan = len(cfg.channels)
     types = [c.type for c in cfg.channels]
@@ -250,8 +252,9 @@ def capture_roll(
         lost += skip
         cols = decode(raw[skip * nchan * 8 :], nchan, types)
         if cols and len(cols[0]):
-            chunks.append(cols)
-            idx.append(np.arange(valid, valid + len(cols[0]), dtype=np.int64))
+            if keep:
+                chunks.append(cols)
+                idx.append(np.arange(valid, valid + len(cols[0]), dtype=np.int64))
             got += len(cols[0])
             if on_chunk is not None:
                 on_chunk(
