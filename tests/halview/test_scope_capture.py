@@ -177,3 +177,43 @@ def test_sixteen_channels_one_second_roll(tmp_path: Path) -> None:
             c, o = int(name.split(".")[1]), name.split(".")[2]
             got = int(row[2 + i]) if o == "clock" else float(row[2 + i])
             assert got == outs[c][o], (n, name)
+
+
+HAL_STEPGEN = """\
+loadrt threads name1=base period1=25000 fp1=0 name2=servo period2=1000000
+loadrt stepgen step_type=0 ctrl_type=v
+addf stepgen.make-pulses base
+addf stepgen.update-freq servo
+addf stepgen.capture-position servo
+setp stepgen.0.position-scale 1000
+setp stepgen.0.steplen 1
+setp stepgen.0.stepspace 1
+setp stepgen.0.velocity-cmd 3.0
+setp stepgen.0.enable 1
+simrun 5ms
+loadrt scope_rt
+addf scope.sample base
+loadusr -Wn halscope halscope -c stepgen.0.step,stepgen.0.rawcounts --samples 4000 --position 0 --out step.csv
+simrun 101ms
+waitusr halscope
+"""
+
+
+def test_stepgen_step_pin_at_25us(tmp_path: Path) -> None:
+    """Every step of a 3 kHz software stepgen at a 25 us base thread is
+    resolved: one sample high (steplen 1 period), as many rising edges as
+    the position counter moved, one step every 333 1/3 us on average."""
+    r = halrun(tmp_path, HAL_STEPGEN)
+    assert r.returncode == 0, r.stderr
+    _, rows = read_csv(tmp_path / "step.csv")
+    assert len(rows) == 4000 and rows[1][1] == "0.000025000"
+    step = [int(r[2]) for r in rows]
+    raw = [int(r[3]) for r in rows]
+    rises = [i for i in range(1, len(step)) if step[i - 1] == 0 and step[i] == 1]
+    assert all(step[i + 1] == 0 for i in rises[:-1]), "each pulse is one period long"
+    assert len(rises) == raw[-1] - raw[0] or len(rises) == raw[-1] - raw[0] - step[0]
+    # each rising edge is the sample where rawcounts moves on
+    assert all(raw[i] == raw[i - 1] + 1 for i in rises)
+    gaps = [b - a for a, b in zip(rises, rises[1:])]
+    assert set(gaps) <= {13, 14}, "333.3 us between steps = 13 or 14 periods of 25 us"
+    assert abs(len(rises) - 100e-3 * 3000) <= 1

@@ -68,6 +68,7 @@ class Capture:
     lost: int = 0
     mode: str = "normal"
     indices: np.ndarray | None = None  # record numbers when some were lost (roll)
+    board_offset: int | None = None  # a virtual board's time minus HAL's (ns)
 
     @property
     def length(self) -> int:
@@ -185,8 +186,12 @@ def capture_triggered(
     timeout: float | None = 60.0,
     on_armed: Callable[[], None] | None = None,
     stop: Callable[[], bool] | None = None,
+    on_done: Callable[[Capture], None] | None = None,
 ) -> Capture:
-    """One triggered capture (normal, single or auto)."""
+    """One triggered capture (normal, single or auto).  on_done(capture)
+    runs before the scope is re-armed; on the simulated clock HAL is then
+    held inside scope.sample (its next call), so the session's time and a
+    lockstep virtual board's time stand still."""
     resolve(scope, cfg)
     seq0 = scope.status().capture_seq
     arm(scope, cfg, reader_wait=halapi.simclock())
@@ -200,7 +205,7 @@ def capture_triggered(
     raw, _ = scope.read(st.start_idx, cfg.samples, len(cfg.channels))
     cols = decode(raw, len(cfg.channels), [c.type for c in cfg.channels])
     trig = st.trig_idx - st.start_idx
-    return Capture(
+    cap = Capture(
         channels=list(cfg.channels),
         interval=st.interval,
         t0=st.t_trig - trig * st.interval,
@@ -209,6 +214,12 @@ def capture_triggered(
         forced=bool(st.forced),
         mode=cfg.mode,
     )
+    if on_done is not None:
+        if halapi.simclock():
+            while st.calls <= st.done_calls:  # scope.sample's next call: it waits there
+                st = w.poll("next period", stop)
+        on_done(cap)
+    return cap
 
 
 def capture_roll(

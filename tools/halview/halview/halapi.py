@@ -77,6 +77,7 @@ class _ScopeStatus(ctypes.Structure):
             "calls",
             "num_samples",
             "pending",
+            "done_calls",
         )
     ]
 
@@ -273,6 +274,7 @@ class ScopeStatus:
     calls: int
     num_samples: int
     pending: int
+    done_calls: int
 
     @property
     def state_name(self) -> str:

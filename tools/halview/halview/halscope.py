@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import signal
 import sys
 from types import FrameType
 
-from . import halapi, outputs, scopectl, setupfile
+from . import halapi, outputs, scopectl, setupfile, vboardtime
 from .capture import Capture, ScopeConfig, capture_roll, capture_triggered, parse_channel
 from .halapi import HalError
 from .timefmt import parse_ns
@@ -46,11 +47,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--save-setup", default=None, help="write the setup to a file")
     p.add_argument("--timeout", type=float, default=60.0, help="seconds to wait (0: forever)")
     p.add_argument("--name", default="halscope", help="HAL component name while running")
+    p.add_argument(
+        "--board",
+        default=None,
+        metavar="SOCKET",
+        help="a virtual board: its firmware's waveforms go into the .vcd output",
+    )
     p.add_argument("--merge", default=None, help="a virtual board's VCD to merge into .vcd")
     p.add_argument(
-        "--board-offset",
-        default=None,
-        help="board time minus HAL time in ns (see docs/halscope.md)",
+        "--board-offset", default=None, help="with --merge: board time minus HAL time in ns"
     )
     p.add_argument("--quiet", "-q", action="store_true")
     from .webargs import add_web_args
@@ -123,7 +128,29 @@ def check_capacity(cfg: ScopeConfig, nsamp: int | None) -> None:
         raise HalError(f"{nchan} channels: scope_rt's num_samples={total} is too small")
 
 
-def take(a: argparse.Namespace, cfg: ScopeConfig) -> list[Capture]:
+class Ready:
+    """halscope's HAL component, ready once the scope is armed (so that
+    `loadusr -Wn halscope halscope ...` returns when nothing can be missed)
+    and gone once the files are written (`waitusr halscope`)."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        self.comp: object | None = None
+
+    def ready(self) -> None:
+        if self.comp is None:
+            import hal
+
+            self.comp = hal.component(self.name)
+            self.comp.ready()  # type: ignore[attr-defined]
+
+    def exit(self) -> None:
+        if self.comp is not None:
+            self.comp.exit()  # type: ignore[attr-defined]
+            self.comp = None
+
+
+def take(a: argparse.Namespace, cfg: ScopeConfig, comp: Ready) -> list[Capture]:
     nsamp = num_samples_arg(a.loadargs)
     thread = scopectl.ensure(cfg.thread, nsamp)
     cfg.thread = thread
@@ -131,15 +158,23 @@ def take(a: argparse.Namespace, cfg: ScopeConfig) -> list[Capture]:
     stop = _Stop()
     signal.signal(signal.SIGTERM, stop.handler)
     signal.signal(signal.SIGINT, stop.handler)
-    comp = None
+    board_dump = board_dump_path(a)
+    dumping = False
 
     def armed() -> None:
-        nonlocal comp
-        if comp is None:
-            import hal
-
-            comp = hal.component(a.name)
+        nonlocal dumping
+        if comp.comp is None:
+            if board_dump:
+                vboardtime.dump(a.board, True, board_dump)
+                dumping = True
             comp.ready()
+
+    def done(cap: Capture) -> None:
+        nonlocal dumping
+        if board_dump and dumping:
+            cap.board_offset = vboardtime.board_time(a.board) - halapi.now_ns()
+            vboardtime.dump(a.board, False)
+            dumping = False
 
     caps: list[Capture] = []
     try:
@@ -154,15 +189,37 @@ def take(a: argparse.Namespace, cfg: ScopeConfig) -> list[Capture]:
                 else:
                     count = 1 if cfg.mode == "single" else max(1, a.count)
                     for _ in range(count):
-                        caps.append(capture_triggered(scope, cfg, timeout, armed, stop))
+                        caps.append(capture_triggered(scope, cfg, timeout, armed, stop, done))
             finally:
                 scope.stop()
     except KeyboardInterrupt:
         pass
     finally:
-        if comp is not None:
-            comp.exit()
+        if dumping:
+            vboardtime.dump(a.board, False)
     return caps
+
+
+def board_dump_path(a: argparse.Namespace) -> str:
+    """Where the board writes its dump for --board (next to the .vcd output)."""
+    if not a.board:
+        return ""
+    vcds = [p for p in a.out if p.lower().endswith(".vcd")]
+    return os.path.abspath(vcds[0] + ".board.vcd")
+
+
+def check_board(a: argparse.Namespace, cfg: ScopeConfig) -> None:
+    if not a.board:
+        return
+    if not [p for p in a.out if p.lower().endswith(".vcd")]:
+        raise HalError("--board merges the firmware's waveforms into a .vcd output: name one")
+    if a.merge:
+        raise HalError("--board and --merge: one or the other")
+    if cfg.mode == "roll" or (cfg.mode != "single" and a.count != 1):
+        raise HalError("--board takes one triggered capture (not roll, not --count)")
+    if not halapi.simclock():
+        raise HalError("--board needs the simulated clock (halrun -S) and a lockstep board")
+    vboardtime.board_time(a.board)  # it answers
 
 
 def title_of(cfg: ScopeConfig, cap: Capture) -> str:
@@ -181,7 +238,13 @@ def write_outputs(a: argparse.Namespace, cfg: ScopeConfig, caps: list[Capture]) 
             if len(caps) > 1:
                 stem, dot, ext = path.rpartition(".")
                 path = f"{stem}-{n + 1}.{ext}"
-            if a.merge and path.lower().endswith(".vcd"):
+            if a.board and path.lower().endswith(".vcd"):
+                from .vcdmerge import write_merged
+
+                dump = board_dump_path(a)
+                write_merged(cap, dump, path, None, title_of(cfg, cap))
+                os.unlink(dump)
+            elif a.merge and path.lower().endswith(".vcd"):
                 from .vcdmerge import write_merged
 
                 write_merged(cap, a.merge, path, a.board_offset, title_of(cfg, cap))
@@ -209,14 +272,21 @@ def main(argv: list[str] | None = None) -> int:
             from .vcdmerge import check_merge
 
             check_merge(a.merge, a.board_offset)
+            if a.board_offset is None:
+                raise HalError("--merge needs --board-offset NS (or use --board SOCKET)")
         halapi.require_session()
         check_names(cfg)
         scopectl.check_thread(cfg.thread or "")
         check_capacity(cfg, num_samples_arg(a.loadargs))
-        caps = take(a, cfg)
-        if not caps:
-            raise HalError("stopped before a capture was complete")
-        write_outputs(a, cfg, caps)
+        check_board(a, cfg)
+        comp = Ready(a.name)
+        try:
+            caps = take(a, cfg, comp)
+            if not caps:
+                raise HalError("stopped before a capture was complete")
+            write_outputs(a, cfg, caps)
+        finally:
+            comp.exit()
         if not a.quiet:
             for cap in caps:
                 extra = f", {cap.lost} lost" if cap.mode == "roll" else ""

@@ -300,6 +300,7 @@ int hv_scope_status(hv_scope_t *h, hv_scope_status_t *st)
     st->calls = (int64_t)c->calls;
     st->num_samples = (int64_t)c->num_samples;
     st->pending = __atomic_load_n(&c->ack_seq, __ATOMIC_ACQUIRE) != c->cmd_seq;
+    st->done_calls = (int64_t)c->done_calls;
     return 0;
 }
 

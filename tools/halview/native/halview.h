@@ -53,7 +53,7 @@ typedef struct hv_scope hv_scope_t;
 typedef struct {
     int64_t state, error, capture_seq, forced, nchan;
     int64_t capacity, widx, trig_idx, start_idx;
-    int64_t t_first, t_trig, interval, lost, calls, num_samples, pending;
+    int64_t t_first, t_trig, interval, lost, calls, num_samples, pending, done_calls;
 } hv_scope_status_t;
 
 /* Attach to the loaded scope_rt's shared memory (-ENOENT: not loaded). */

@@ -270,6 +270,7 @@ static void triggered_step(scope_rt_t *s, const hal_data_u *rec)
         s->have_prev = 1;
     }
     if (s->state == SCOPE_TRIGGERED && w + 1 == s->trig - s->pretrig + s->rec_len) {
+        c->done_calls = c->calls;
         set_state(s, SCOPE_DONE);
         __atomic_add_fetch(&c->capture_seq, 1, __ATOMIC_RELEASE);
     }

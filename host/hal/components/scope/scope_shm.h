@@ -102,6 +102,7 @@ typedef struct {
     volatile int64_t interval;     /* ns between records (mult * period) */
     volatile uint64_t lost;        /* roll: records overwritten unread */
     volatile uint64_t calls;       /* calls of scope.sample (any state) */
+    volatile uint64_t done_calls;  /* `calls` when the last capture was DONE */
 
     /* reader (front end writes) */
     volatile uint64_t rd_idx; /* roll: records < rd_idx have been consumed */
