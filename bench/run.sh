@@ -8,6 +8,7 @@
 #   components  per-call cost of lut5, mux16, pid, stepgen, encoder, pwmgen vs 2.9
 #   hal         HAL per-function dispatch cost and HAL file load time, vs 2.9
 #   halcompile  a generated component vs a hand-written one vs LinuxCNC, per call
+#   halview     scope_rt's cost per sample in the thread; the live page's rate and latency
 #   hdl         hm2 stepgen/encoder/pwmgen speed figures vs Mesa's anchors
 #   hm2         hostmot2 + hm2_sim read/write time per servo cycle
 #   machines    what the machine models (vboard --machine) add to a servo cycle

@@ -217,3 +217,31 @@ def test_stepgen_step_pin_at_25us(tmp_path: Path) -> None:
     gaps = [b - a for a, b in zip(rises, rises[1:])]
     assert set(gaps) <= {13, 14}, "333.3 us between steps = 13 or 14 periods of 25 us"
     assert abs(len(rises) - 100e-3 * 3000) <= 1
+
+
+HAL_RELINK = """\
+loadrt threads name1=fast period1=100000
+loadrt siggen
+loadrt mult2
+addf siggen.0.update fast
+setp siggen.0.frequency 100
+net sa siggen.0.square mult2.0.in0
+net sb siggen.0.sawtooth
+loadusr -Wn halscope halscope --thread fast -c mult2.0.in0 --mode roll --duration 20ms -o r.csv
+simrun 10ms
+unlinkp mult2.0.in0
+net sb mult2.0.in0
+simrun 10ms
+waitusr halscope
+"""
+
+
+def test_a_pin_is_followed_to_its_new_signal(tmp_path: Path) -> None:
+    """Relinking a sampled pin while the scope runs: the samples follow it."""
+    r = halrun(tmp_path, HAL_RELINK)
+    assert r.returncode == 0, r.stderr
+    _, rows = read_csv(tmp_path / "r.csv")
+    recs = model_records(200)
+    assert [float(r[2]) for r in rows] == [m["square"] for m in recs[:100]] + [
+        m["sawtooth"] for m in recs[100:]
+    ]

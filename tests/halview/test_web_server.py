@@ -195,3 +195,36 @@ def test_client_vanishing_mid_stream(live: LiveHal) -> None:
     assert srv.poll() is None, "the server is still running"
     assert live.halcmd("gets", "free").stdout.strip() == "1.5"
     assert "scope.sample" in live.halcmd("show", "thread").stdout
+
+
+def test_scope_over_the_websocket(live: LiveHal) -> None:
+    """Setups from the page: a bad one changes nothing and says why; a
+    setup file is parsed by the server; a good one runs and captures."""
+    _, url = live.start_web(BIN / "halweb", "--page", "scope")
+    with connect(ws_url(url)) as ws:
+        recv_type(ws, "hello")
+        for setup, message in [
+            ({"channels": ["nope"], "thread": "fast"}, "no pin, signal or parameter named 'nope'"),
+            ({"channels": ["siggen.0.sine"], "thread": "slow"}, "thread 'slow' does not exist"),
+            (
+                {"channels": ["siggen.0.sine"], "thread": "fast", "samples": "x"},
+                "bad scope setting",
+            ),
+            (
+                {"channels": ["siggen.0.sine"], "thread": "fast", "trigger": "siggen.0.cosine"},
+                "the trigger 'siggen.0.cosine' is not one of the channels",
+            ),
+        ]:
+            ws.send(json.dumps({"op": "scope_run", "setup": setup}))
+            assert message in str(recv_type(ws, "error")["error"])
+        assert "scope_rt" not in live.halcmd("show", "comp").stdout
+        text = "thread fast\nsamples 50\nmode single\ntrigger none\nchan pin siggen.0.sine\n"
+        ws.send(json.dumps({"op": "scope_load", "text": text}))
+        setup = recv_type(ws, "scope_setup")["setup"]
+        assert setup["samples"] == 50 and setup["channels"][0]["name"] == "siggen.0.sine"
+        ws.send(json.dumps({"op": "scope_load", "text": "samples x\n"}))
+        assert recv_type(ws, "error")["error"] == "setup:1: 'x' is not a number"
+        ws.send(json.dumps({"op": "scope_run", "setup": setup}))
+        cap = recv_type(ws, "scope")
+        assert cap["names"] == ["siggen.0.sine"] and len(cap["columns"][0]) == 50
+        assert cap["interval"] == 1_000_000 and cap["trigger"] is None

@@ -52,8 +52,12 @@ class ScopeConfig:
         raise HalError(f"the trigger '{self.trigger}' is not one of the channels")
 
     def pretrig(self) -> int:
+        """Samples before the trigger; none without a trigger channel (the
+        capture starts at once)."""
         if not 0.0 <= self.position <= 100.0:
             raise HalError(f"trigger position {self.position}%: must be 0 to 100")
+        if not self.trigger:
+            return 0
         return min(self.samples - 1, int(round(self.samples * self.position / 100.0)))
 
 
@@ -210,7 +214,7 @@ def capture_triggered(
         interval=st.interval,
         t0=st.t_trig - trig * st.interval,
         columns=cols,
-        trigger=trig,
+        trigger=trig if cfg.trigger else None,
         forced=bool(st.forced),
         mode=cfg.mode,
     )
