@@ -156,7 +156,10 @@ def test_scope_trace_matches_hal(browser: Browser, live: LiveHal) -> None:
     )
     page = browser.new_page(url)
     try:
-        cap = page.wait_for("window.halweb.lastCapture", 30)
+        # the capture and what was plotted from it, read at one moment (normal
+        # mode re-arms: the next capture may arrive at any time)
+        page.wait_for("window.halweb.lastCapture", 30)
+        cap, plotted = page.eval("[window.halweb.lastCapture, window.halweb.plotted]")
         assert cap["names"] == ["siggen.0.square", "siggen.0.sine"]
         assert cap["interval"] == 1_000_000 and cap["trigger"] == 80
         sq, sine = cap["columns"]
@@ -168,9 +171,9 @@ def test_scope_trace_matches_hal(browser: Browser, live: LiveHal) -> None:
         ref = [g.update(1_000_000)["square"] for _ in range(k + 400)][k:]
         assert sq == ref
         assert page.eval("document.querySelectorAll('#scope-plot canvas').length") > 0
-        plotted = page.eval("window.halweb.plotted")
         assert plotted["rows"] == 400 and plotted["first"][0] == -80.0
         assert plotted["first"][1:] == [sq[0], sine[0]]
+        assert plotted["last"][1:] == [sq[-1], sine[-1]]
         shot(page, "halscope-trace")
         # the user changes the record and the trigger on the page and runs it
         n0 = page.eval("window.halweb.captures")

@@ -288,8 +288,43 @@ function leaf(it, label) {
   return d;
 }
 
+// The tree is rebuilt only when its set of objects changed; otherwise the
+// values and facts are updated in place, so a value being typed into a set
+// field survives the periodic refresh.
+let treeSignature = "";
+
+function updateTreeInPlace(m) {
+  const leaves = new Map();
+  for (const d of document.querySelectorAll("#tree .leaf")) leaves.set(d.dataset.kind + "+" + d.dataset.name, d);
+  for (const [kind] of SECTIONS) {
+    for (const it of m.items[kind] || []) {
+      const d = leaves.get(kind + "+" + it.name);
+      if (!d) continue;
+      const v = d.querySelector(".val");
+      if (v) v.textContent = hw.values[key(it.kind, it.name)] ?? it.value;
+      d.querySelector(".meta").textContent = meta(it);
+    }
+  }
+}
+
 function onTree(m) {
   hw.tree = m.items;
+  const sig = SECTIONS.map(([k]) => k + ":" + (m.items[k] || []).map((it) =>
+    it.name + (writable(it) ? "+w" : "")).join(",")).join(";");
+  if (sig === treeSignature && $("tree").childElementCount) {
+    updateTreeInPlace(m);
+    return;
+  }
+  treeSignature = sig;
+  // what the user typed and the last results survive a rebuild
+  const typed = new Map(), results = new Map();
+  for (const d of document.querySelectorAll("#tree .leaf")) {
+    const k = d.dataset.kind + "+" + d.dataset.name;
+    const inp = d.querySelector(".tree-set-input");
+    if (inp && inp.value) typed.set(k, [inp.value, document.activeElement === inp]);
+    const res = d.querySelector(".set-result");
+    if (res && res.textContent) results.set(k, [res.textContent, res.className]);
+  }
   const root = $("tree");
   root.innerHTML = "";
   let total = 0;
@@ -326,6 +361,16 @@ function onTree(m) {
       parent.appendChild(leaf(it, parts[parts.length - 1]));
     }
     root.appendChild(sec);
+  }
+  for (const d of document.querySelectorAll("#tree .leaf")) {
+    const k = d.dataset.kind + "+" + d.dataset.name;
+    const inp = d.querySelector(".tree-set-input");
+    if (inp && typed.has(k)) {
+      inp.value = typed.get(k)[0];
+      if (typed.get(k)[1]) inp.focus();
+    }
+    const res = d.querySelector(".set-result");
+    if (res && results.has(k)) [res.textContent, res.className] = results.get(k);
   }
   $("tree-count").textContent = total + " objects";
 }
