@@ -70,6 +70,8 @@ class Client:
         self.ws = ws
         self.watch = list(watch)
         self.seq = 0
+        self.acked = 0
+        self.window = 0  # 0: no flow control; else at most this many unacknowledged
 
 
 class Server:
@@ -190,6 +192,9 @@ class Server:
         period = 1.0 / self.opts.rate
         try:
             while True:
+                if c.window and c.seq - c.acked >= c.window:
+                    await asyncio.sleep(min(period, 0.005))  # the page is still drawing
+                    continue
                 t_read = time.time()
                 vals = halapi.get_many(c.watch)
                 c.seq += 1
@@ -241,6 +246,12 @@ class Server:
         if op == "scope_load":
             cfg = setupfile.loads(str(msg.get("text", "")), "setup")
             return {"type": "scope_setup", "setup": config_json(cfg)}
+        if op == "flow":
+            c.window = max(0, int(msg.get("window", 0)))  # type: ignore[call-overload]
+            return None
+        if op == "ack":
+            c.acked = max(c.acked, int(msg.get("seq", 0)))  # type: ignore[call-overload]
+            return None
         if op == "ping":
             return {"type": "pong", "t": msg.get("t")}
         raise HalError(f"unknown op '{op}'")

@@ -38,7 +38,13 @@ function send(msg) {
 function connect() {
   const proto = location.protocol === "https:" ? "wss:" : "ws:";
   ws = new WebSocket(proto + "//" + location.host + "/ws" + token());
-  ws.onopen = () => { hw.connected = true; $("status").textContent = "connected"; };
+  ws.onopen = () => {
+    hw.connected = true;
+    $("status").textContent = "connected";
+    // at most 2 value updates in flight: the server never queues more than
+    // the page can draw, so what is shown stays fresh
+    send({ op: "flow", window: 2 });
+  };
   ws.onclose = () => {
     hw.connected = false;
     $("status").textContent = "disconnected - retrying";
@@ -160,15 +166,20 @@ function onValues(m) {
   for (const td of document.querySelectorAll("#watch-list tr")) {
     const v = hw.values[td.dataset.key];
     const cell = td.querySelector(".watch-value");
-    cell.textContent = v === null ? "removed" : v ?? "";
+    const text = v === null ? "removed" : v ?? "";
+    if (cell.textContent !== text) cell.textContent = text;
   }
-  for (const el of document.querySelectorAll("#tree .val[data-key]")) {
-    const v = hw.values[el.dataset.key];
-    if (v !== undefined) el.textContent = v === null ? "removed" : v;
+  if ($("page-show").classList.contains("active")) {
+    for (const el of document.querySelectorAll("#tree .val[data-key]")) {
+      const v = hw.values[el.dataset.key];
+      const text = v === null ? "removed" : v;
+      if (v !== undefined && el.textContent !== text) el.textContent = text;
+    }
   }
   $("haltime").textContent = "t = " + (m.hal_time / 1e9).toFixed(6) + " s";
   // latency: HAL read on the server to the page's next frame (same machine clock)
   requestAnimationFrame(() => {
+    send({ op: "ack", seq: m.seq });
     const st = hw.stats;
     if (!st.first) st.first = now;
     st.updates += 1;
@@ -176,15 +187,23 @@ function onValues(m) {
     if (st.latencies.length > 5000) st.latencies.shift();
   });
   if (m.names.length && $("page-meter").classList.contains("active")) {
-    if (meterHistory.length && meterHistory[0].length !== row.length) meterHistory = [];
-    meterHistory.push(row);
+    const plotted = row.slice(0, METER_PLOT_MAX + 1);
+    if (meterHistory.length && meterHistory[0].length !== plotted.length) meterHistory = [];
+    meterHistory.push(plotted);
     if (meterHistory.length > 600) meterHistory.shift();
-    drawMeter(m.names);
+    // the plot is redrawn at most 5 times a second; the table every update
+    if (Date.now() - lastMeterDraw > 200) {
+      lastMeterDraw = Date.now();
+      drawMeter(m.names);
+    }
   }
 }
 
+let lastMeterDraw = 0;
+const METER_PLOT_MAX = 8; // series in the history plot (the table shows all)
+
 function drawMeter(names) {
-  const labels = ["time"].concat(names.map(([k, n]) => n));
+  const labels = ["time"].concat(names.slice(0, METER_PLOT_MAX).map(([k, n]) => n));
   if (!meterHistory.length || meterHistory[0].length !== labels.length) return;
   if (!meterGraph || meterGraph.getLabels().length !== labels.length) {
     if (meterGraph) meterGraph.destroy();
