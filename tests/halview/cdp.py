@@ -174,6 +174,14 @@ class Page:
             ".dispatchEvent(new Event('change', {bubbles: true}))"
         )
 
+    def set_file(self, selector: str, path: Path) -> None:
+        """Choose a file in an <input type=file>, as the file dialog does."""
+        root = self.call("DOM.getDocument")["root"]["nodeId"]
+        node = self.call("DOM.querySelector", nodeId=root, selector=selector)["nodeId"]
+        if not node:
+            raise CdpError(f"no element {selector}")
+        self.call("DOM.setFileInputFiles", files=[str(path)], nodeId=node)
+
     def screenshot(self, path: Path) -> None:
         data = self.call("Page.captureScreenshot", format="png")["data"]
         path.write_bytes(base64.b64decode(data))

@@ -137,7 +137,7 @@ def match_model(sine: list[float], freq: float) -> int:
     raise AssertionError("the trace is not a stretch of siggen's sine")
 
 
-def test_scope_trace_matches_hal(browser: Browser, live: LiveHal) -> None:
+def test_scope_trace_matches_hal(browser: Browser, live: LiveHal, tmp_path: Path) -> None:
     _, url = live.start_web(
         BIN / "halscope",
         "--web",
@@ -189,6 +189,24 @@ def test_scope_trace_matches_hal(browser: Browser, live: LiveHal) -> None:
         sq = cap["columns"][0]
         assert cap["trigger"] == 125 and sq[124] == 1.0 and sq[125] == -1.0
         shot(page, "halscope-falling")
+        # a setup file loaded through the page's file field fills the form
+        setup = tmp_path / "mine.halscope"
+        setup.write_text(
+            "thread fast\nsamples 321\nmode single\n"
+            "trigger siggen.0.sine falling 0.5 position 30\n"
+            "chan pin siggen.0.sine scale 2 offset 1\n"
+        )
+        page.set_file("#scope-load", setup)
+        page.wait_for("document.getElementById('scope-samples').value === '321'")
+        assert page.eval(
+            "[document.getElementById('scope-channels').value, document.getElementById("
+            "'scope-mode').value, document.getElementById('scope-trigger').value, "
+            "document.getElementById('scope-edge').value, document.getElementById("
+            "'scope-position').value]"
+        ) == ["siggen.0.sine", "single", "siggen.0.sine", "falling", "30"]
+        assert page.eval("JSON.stringify(window.halweb.scopeSetup.channels)") == (
+            '[{"name":"siggen.0.sine","scale":2,"offset":1}]'
+        )
         no_errors(page)
     finally:
         page.close()

@@ -110,3 +110,41 @@ def test_scope_rt_bad_num_samples(tmp_path: Path) -> None:
     r = halrun(tmp_path, "loadrt scope_rt num_samples=3\nshow comp\n")
     assert "SCOPE_RT: ERROR: num_samples=3 is out of range (16 to 134217728)" in r.stderr
     assert "scope_rt" not in r.stdout
+
+
+@pytest.mark.parametrize(
+    "text,message",
+    [
+        ("samples x\n", "s.halscope:1: 'x' is not a number"),
+        ("thread fast\nbogus 1\n", "s.halscope:2: cannot understand 'bogus 1'"),
+        ("mode sometimes\n", "s.halscope:1: mode 'sometimes': one of normal, auto, single, roll"),
+        ("trigger a upward 1\n", "s.halscope:1: edge 'upward': rising or falling"),
+        ("chan wire x\n", "s.halscope:1: 'wire': pin, sig, param or auto"),
+        ("chan pin x scale\n", "s.halscope:1: options go in pairs (NAME VALUE)"),
+        ("chan pin x gain 2\n", "s.halscope:1: unknown option 'gain' (expected scale, offset)"),
+        ("chan pin x\n" * 17, "s.halscope: 17 channels, the scope has 16"),
+    ],
+)
+def test_bad_setup_file(tmp_path: Path, text: str, message: str) -> None:
+    (tmp_path / "s.halscope").write_text(text)
+    r = halrun(tmp_path, SETUP.format(args="-i s.halscope --thread fast --out x.csv"))
+    assert f"halscope: {message}" in r.stderr
+    assert "scope_rt" not in r.stdout
+
+
+def test_setup_round_trip(tmp_path: Path) -> None:
+    """--save-setup writes what -i reads back: the same file again."""
+    r = halrun(
+        tmp_path,
+        SETUP.format(
+            args="-c pin:siggen.0.sine,sig:x --trigger siggen.0.sine --edge falling --level 0.25 "
+            "--position 10 --samples 123 --mult 3 --mode auto --thread fast --save-setup a.txt"
+        ),
+    )
+    assert r.returncode == 0, r.stderr
+    r = halrun(tmp_path, SETUP.format(args="-i a.txt --save-setup b.txt"))
+    a, b = (tmp_path / "a.txt").read_text(), (tmp_path / "b.txt").read_text()
+    assert a == b
+    assert "chan pin siggen.0.sine scale 1.0 offset 0.0\nchan sig x scale 1.0 offset 0.0\n" in a
+    assert "trigger siggen.0.sine falling 0.25 position 10.0\n" in a
+    assert "mult 3\nsamples 123\nmode auto\n" in a

@@ -398,8 +398,10 @@ function onTree(m) {
 
 function scopeSetup() {
   const chans = $("scope-channels").value.split(",").map((s) => s.trim()).filter((s) => s);
+  // a loaded setup's scales and offsets stay with their channels
+  const known = new Map(((hw.scopeSetup && hw.scopeSetup.channels) || []).map((c) => [c.name, c]));
   return {
-    channels: chans.map((c) => ({ name: c })),
+    channels: chans.map((c) => ({ name: c, scale: known.get(c)?.scale ?? 1, offset: known.get(c)?.offset ?? 0 })),
     thread: $("scope-thread").value,
     samples: Number($("scope-samples").value),
     mult: Number($("scope-mult").value),
@@ -501,7 +503,7 @@ function saveSetup() {
   const lines = ["# halscope setup (docs/halscope.md)", "thread " + s.thread, "mult " + s.mult,
                  "samples " + s.samples, "mode " + s.mode,
                  s.trigger ? `trigger ${s.trigger} ${s.edge} ${s.level} position ${s.position}` : "trigger none"];
-  for (const c of s.channels) lines.push("chan auto " + c.name + " scale 1 offset 0");
+  for (const c of s.channels) lines.push(`chan auto ${c.name} scale ${c.scale} offset ${c.offset}`);
   const blob = new Blob([lines.join("\n") + "\n"], { type: "text/plain" });
   const a = document.createElement("a");
   a.href = URL.createObjectURL(blob);
