@@ -180,12 +180,65 @@ void stepper()
     CHECK_CONTAINS(b, "\"dir_setup\": 1");
 }
 
+const char *kStop = R"(
+board = "t"
+[[axis]]
+name = "x"
+lead_mm = 5
+mass_kg = 10
+hard_stops_mm = [-1, 1]
+[axis.motor]
+type = "dc"
+resistance_ohm = 1.0
+inductance_h = 1e-3
+kt_nm_per_a = 0.1
+ke_v_s_per_rad = 0.1
+inertia_kg_m2 = 1e-4
+[axis.amplifier]
+a = 0
+b = 1
+bus_v = 24
+current_limit_a = 5
+enable = { pin = 2, active = "low" }
+fault = { pin = 7, active = "low", after_ms = 20 }
+)";
+
+// Full voltage into a hard stop: the slide stops dead at 1 mm, the current
+// rises to the amplifier's limit, 20 ms later the amplifier trips (fault
+// pin active, bridge open, current 0); an enable edge clears it.
+void hard_stop_and_fault()
+{
+    Rig r(kStop);
+    r.set(2, false, 0);
+    r.set(1, false, 0);
+    r.set(0, true, 0); // 100 % positive
+    CHECK(r.pins.level(7)); // fault inactive (high)
+    r.pins.run_events(100000000);
+    std::string st = r.m->status_json(100000000);
+    CHECK_CONTAINS(st, "\"position\": 1,");
+    CHECK_CONTAINS(st, "\"velocity\": 0,");
+    CHECK_CONTAINS(st, "\"stop_hits\": 1,");
+    CHECK_CONTAINS(st, "\"fault\": true");
+    CHECK_CONTAINS(st, "\"current\": 0,");
+    CHECK(!r.pins.level(7));
+    // when did it trip?  the current reached 5 A within a few ms of the
+    // stop; the fault came after_ms later, well inside the 100 ms
+    double at = std::stod(st.substr(st.find("\"current_limited_steps\": ") + 25));
+    CHECK(at >= 20000 && at <= 21000); // 20 ms of 1 us steps at the limit, then open
+    r.set(2, true, 100000000); // disable ...
+    r.set(2, false, 100001000); // ... and enable again: cleared
+    CHECK(r.pins.level(7));
+    r.pins.run_events(100100000);
+    CHECK_CONTAINS(r.m->status_json(100100000), "\"fault\": false");
+}
+
 } // namespace
 
 void machine()
 {
     servo();
     stepper();
+    hard_stop_and_fault();
 }
 
 } // namespace plant_test
