@@ -32,11 +32,36 @@ HM2CORE = [
     DRV / "llio" / "llio_image.c",
     *(
         DRV / "hostmot2" / f"{n}.c"
-        for n in ("msg", "names", "config", "idrom", "md", "pins", "bitfile", "probe", "math")
+        for n in (
+            "msg",
+            "names",
+            "config",
+            "idrom",
+            "md",
+            "pins",
+            "bitfile",
+            "probe",
+            "math",
+        )
     ),
 ]
 C_FLAGS = ["-I", str(DRV / "include"), "-I", str(ROOT / "host" / "hal" / "include")]
-CXX_FLAGS = ["-std=c++17", "-I", str(VB / "src"), "-I", str(VB / "include"), "-I", str(VB / "epp")]
+CXX_FLAGS = [
+    "-std=c++17",
+    "-I",
+    str(VB / "src"),
+    "-I",
+    str(VB / "include"),
+    "-I",
+    str(VB / "epp"),
+]
+# The server owns the machine models (sim/verilator/src/plant), which use Eigen
+# (headers only; Debian's libeigen3-dev puts them in /usr/include/eigen3).
+EIGEN = ["-I", "/usr/include/eigen3"]
+PLANT = [
+    VB / "src" / "plant" / f"{n}.cpp"
+    for n in ("config", "drive_input", "encoder", "machine", "motor", "toml")
+]
 
 TARGETS: dict[str, tuple[str, list[str], list[Path]]] = {
     "hm2_bitfile": ("clang", C_FLAGS, [HERE / "fuzz_hm2_bitfile.c", *HM2CORE]),
@@ -48,13 +73,14 @@ TARGETS: dict[str, tuple[str, list[str], list[Path]]] = {
     ),
     "vboard_server": (
         "clang++",
-        CXX_FLAGS + ["-pthread"],
+        CXX_FLAGS + EIGEN + ["-pthread"],
         [
             HERE / "fuzz_vboard_server.cpp",
             VB / "src" / "server.cpp",
             VB / "src" / "pins.cpp",
             VB / "src" / "fwimage.cpp",
             VB / "epp" / "epp_port_board.cpp",
+            *PLANT,
         ],
     ),
 }
@@ -68,7 +94,9 @@ def bindir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def build(name: str, out: Path) -> Path:
     compiler, flags, sources = TARGETS[name]
     cc = shutil.which(compiler)
-    assert cc is not None, f"{compiler} is required for the fuzz tests (apt-get install clang)"
+    assert (
+        cc is not None
+    ), f"{compiler} is required for the fuzz tests (apt-get install clang)"
     exe = out / f"fuzz_{name}"
     cmd = [
         cc,
@@ -83,7 +111,9 @@ def build(name: str, out: Path) -> Path:
         str(exe),
     ]
     r = subprocess.run(cmd, capture_output=True, text=True)
-    assert r.returncode == 0, f"fuzz target {name} did not build:\n{' '.join(cmd)}\n{r.stderr}"
+    assert (
+        r.returncode == 0
+    ), f"fuzz target {name} did not build:\n{' '.join(cmd)}\n{r.stderr}"
     return exe
 
 
@@ -112,4 +142,6 @@ def test_fuzz_target(name: str, bindir: Path, tmp_path: Path) -> None:
     assert r.returncode == 0, f"{name}: libFuzzer found a problem:\n{r.stderr[-6000:]}"
     assert "Done " in r.stderr, r.stderr[-2000:]
     runs = int(r.stderr.rsplit("Done ", 1)[1].split()[0])
-    assert runs > len(list(seeds.iterdir())), f"{name}: only {runs} runs:\n{r.stderr[-2000:]}"
+    assert runs > len(
+        list(seeds.iterdir())
+    ), f"{name}: only {runs} runs:\n{r.stderr[-2000:]}"
