@@ -326,6 +326,18 @@ function updateTreeInPlace(m) {
   }
 }
 
+// An existing leaf is kept if it offers the same controls (a set field only
+// where halcmd would accept a set); its value and facts are refreshed.
+function reuseLeaf(d, it) {
+  if (!d) return null;
+  const settable = ["pin", "param", "sig"].includes(it.kind) && !(hw.hello && hw.hello.read_only) && writable(it);
+  if (!!d.querySelector(".tree-set-input") !== settable) return null;
+  const v = d.querySelector(".val");
+  if (v) v.textContent = hw.values[key(it.kind, it.name)] ?? it.value;
+  d.querySelector(".meta").textContent = meta(it);
+  return d;
+}
+
 function onTree(m) {
   hw.tree = m.items;
   const sig = SECTIONS.map(([k]) => k + ":" + (m.items[k] || []).map((it) =>
@@ -335,15 +347,13 @@ function onTree(m) {
     return;
   }
   treeSignature = sig;
-  // what the user typed and the last results survive a rebuild
-  const typed = new Map(), results = new Map();
-  for (const d of document.querySelectorAll("#tree .leaf")) {
-    const k = d.dataset.kind + "+" + d.dataset.name;
-    const inp = d.querySelector(".tree-set-input");
-    if (inp && inp.value) typed.set(k, [inp.value, document.activeElement === inp]);
-    const res = d.querySelector(".set-result");
-    if (res && res.textContent) results.set(k, [res.textContent, res.className]);
-  }
+  // Leaves that still exist are moved into the new tree, not recreated: what
+  // the user typed, the last set results, and a click whose press and release
+  // straddle the rebuild (another halcmd coming and going changes the
+  // component list) all stay with the same elements.
+  const old = new Map();
+  for (const d of document.querySelectorAll("#tree .leaf")) old.set(d.dataset.kind + "+" + d.dataset.name, d);
+  const focused = document.activeElement;
   const root = $("tree");
   root.innerHTML = "";
   let total = 0;
@@ -377,20 +387,11 @@ function onTree(m) {
         }
         parent = nodes[path];
       }
-      parent.appendChild(leaf(it, parts[parts.length - 1]));
+      parent.appendChild(reuseLeaf(old.get(kind + "+" + it.name), it) || leaf(it, parts[parts.length - 1]));
     }
     root.appendChild(sec);
   }
-  for (const d of document.querySelectorAll("#tree .leaf")) {
-    const k = d.dataset.kind + "+" + d.dataset.name;
-    const inp = d.querySelector(".tree-set-input");
-    if (inp && typed.has(k)) {
-      inp.value = typed.get(k)[0];
-      if (typed.get(k)[1]) inp.focus();
-    }
-    const res = d.querySelector(".set-result");
-    if (res && results.has(k)) [res.textContent, res.className] = results.get(k);
-  }
+  if (focused && focused !== document.activeElement && root.contains(focused)) focused.focus();
   $("tree-count").textContent = total + " objects";
 }
 
