@@ -53,14 +53,14 @@ variable void *cmd_deriv_unlinked;
 variable void *fb_deriv_unlinked;
 function do_pid_calcs;
 option rtapi_app no;
-option default_count 3;
+option default_count 1;
 include "math/pid_math.h";
 license "GPL";
 ;;
 #define PID_MAX_CHAN 16
 
 static int num_chan;
-RTAPI_MP_INT(num_chan, "number of pid loops (default 3, at most 16)");
+RTAPI_MP_INT(num_chan, "number of pid loops (default 1 as the seed documents, at most 16)");
 static int debug;
 RTAPI_MP_INT(debug, "1: export the internal values (errorI, commandD, ...)");
 static char *names[PID_MAX_CHAN];
