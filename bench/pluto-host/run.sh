@@ -19,8 +19,8 @@ echo "--- register model, epp_wide=0"
 "$BENCH" --cycles 20000 --narrow
 VB="$BUILD/bin/vboard"
 FW="$BUILD/lib/firmware"
-if [ -x "$VB" ] && [ -f "$FW/pluto_servo.rbf" ] && [ -f "$FW/pluto_step.rbf" ]; then
-    exec python3 "$ROOT/bench/pluto-host/vboard_bench.py" "$BUILD"
-else
-    echo "--- virtual board: not built (no $VB or pluto firmware), skipped"
+if ! [ -x "$VB" ] || ! [ -f "$FW/pluto_servo.rbf" ] || ! [ -f "$FW/pluto_step.rbf" ]; then
+    echo "bench/pluto-host: the virtual board or the pluto firmware is not built ($VB, $FW): run make build" >&2
+    exit 1
 fi
+exec python3 "$ROOT/bench/pluto-host/vboard_bench.py" "$BUILD"

@@ -120,8 +120,7 @@ def report_top(desc: Path, work: Path) -> None:
 
 def fmax_slice(work: Path) -> None:
     if not shutil.which("nextpnr-ice40"):
-        print("slice fmax: nextpnr-ice40 not installed, skipped")
-        return
+        raise SystemExit("bench/synth: nextpnr-ice40 is required (apt-get install nextpnr-ice40)")
     desc = work / "firmware" / "bench" / "SLICE.toml"
     desc.parent.mkdir(parents=True, exist_ok=True)
     desc.write_text((Path(__file__).parent / "slice.toml").read_text())
@@ -163,8 +162,7 @@ def main() -> int:
     ap.add_argument("--keep", type=Path, help="keep the work files in this directory")
     args = ap.parse_args()
     if not shutil.which("yosys"):
-        print("bench/synth: yosys not installed, skipped")
-        return 0
+        raise SystemExit("bench/synth: yosys is required (apt-get install yosys)")
     with tempfile.TemporaryDirectory() as tmp:
         work = args.keep or Path(tmp)
         work.mkdir(parents=True, exist_ok=True)

@@ -124,7 +124,7 @@ HM2GEN_CASES = [
 def test_hm2gen_idrom_cross_check(
     tmp_path: Path, board: str, fw: str, pins: str, config: str, counts: dict[int, int]
 ) -> None:
-    """hm2gen's IDROM image (another engineer's generator) must give the
+    """hm2gen's IDROM image (an independent generator) must give the
     same report as the image built here from the stock CSV."""
     hexfile = BUILD / "generated" / board / fw / f"{fw}.idrom.hex"  # made by the build
     if not hexfile.exists():

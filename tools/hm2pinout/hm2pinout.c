@@ -16,12 +16,8 @@
 #include "hm2/boards.h"
 #include "hm2/hm2.h"
 #include "hm2/llio_image.h"
-#ifdef HM2PINOUT_HAVE_PCI
 #include "source_pci.h"
-#endif
-#ifdef HM2PINOUT_HAVE_SIM
 #include "source_sim.h"
-#endif
 
 struct opts {
     const char *board;
@@ -203,20 +199,16 @@ int main(int argc, char **argv)
     void *pci = NULL, *sim = NULL;
     struct hm2_image_llio *im = NULL;
     int rc = 1;
-#ifdef HM2PINOUT_HAVE_SIM
     if (strncmp(path, "sim:", 4) == 0) {
         if (hm2pinout_open_sim(path + 4, o.index, &llio, &sim))
             return 1;
         goto probe;
     }
-#endif
-#ifdef HM2PINOUT_HAVE_PCI
     if (strncmp(path, "pci:", 4) == 0) {
         if (hm2pinout_open_pci(path + 4, o.index, &llio, &pci))
             return 1;
         goto probe;
     }
-#endif
     if (strncmp(path, "image:", 6) == 0) {
         path += 6;
     } else if (strchr(path, ':') && strncmp(path, "/", 1) != 0) {
@@ -231,9 +223,7 @@ int main(int argc, char **argv)
     if (open_image(path, b, o.index, im))
         goto out;
     llio = &im->llio;
-#if defined(HM2PINOUT_HAVE_PCI) || defined(HM2PINOUT_HAVE_SIM)
 probe:;
-#endif
     struct sink s = {o.no_prefix, 1, o.pin_file && !o.verbose};
     struct hm2_options hopts = {{o.verbose, o.verbose, 0, 0}, NULL};
     int err;
@@ -257,11 +247,7 @@ probe:;
     rc = 0;
 out:
     free(im);
-#ifdef HM2PINOUT_HAVE_PCI
     hm2pinout_close_pci(pci);
-#endif
-#ifdef HM2PINOUT_HAVE_SIM
     hm2pinout_close_sim(sim);
-#endif
     return rc;
 }

@@ -196,7 +196,6 @@ static void test_board_gone_reported_once(void)
     CHECK_EQ_INT(log.errors, 1);
     CHECK(strstr(log.last, "the board is gone") != NULL);
     int req = fb.requests;
-    double t0 = now_s();
     for (int i = 0; i < 1000; i++) {
         CHECK_EQ_INT(l->queue_read(l, 0x100, &r, 4), 0);
         CHECK_EQ_INT(l->send_queued_reads(l), -ENODEV);
@@ -204,7 +203,6 @@ static void test_board_gone_reported_once(void)
         CHECK_EQ_INT(l->send_queued_writes(l), -ENODEV);
         CHECK_EQ_INT(l->read(l, 0x100, &r, 4), -ENODEV);
     }
-    CHECK(now_s() - t0 < 0.5);
     CHECK_EQ_INT(log.errors, 1); /* no report per call */
     CHECK_EQ_INT(fb.requests, req);
     hm2_sim_teardown(&sb);
@@ -225,7 +223,9 @@ static void test_timeout_and_bad_reply(void)
     double t0 = now_s();
     CHECK_EQ_INT(l->read(l, 0x100, &r, 4), -ENODEV);
     double dt = now_s() - t0;
-    CHECK(dt >= 0.19 && dt < 2.0);
+    /* behaviour, not speed: it waits the whole timeout, then gives up
+     * (the upper bound only catches a hang, loose for loaded CI machines) */
+    CHECK(dt >= 0.19 && dt < 30.0);
     CHECK(strstr(log.last, "no reply within the timeout") != NULL);
     hm2_sim_teardown(&sb);
     fake_board_stop(&fb);
@@ -258,7 +258,7 @@ static void test_send_timeout(void)
     double t0 = now_s();
     CHECK_EQ_INT(vbc_send(&c, VB_CONFIG, 0), -ETIMEDOUT);
     double dt = now_s() - t0;
-    CHECK(dt >= 0.19 && dt < 2.0);
+    CHECK(dt >= 0.19 && dt < 30.0); /* waits the timeout, does not hang */
     CHECK(strstr(c.err, "send timeout") != NULL);
     CHECK_EQ_INT(c.fd, -1);
     free(big);
