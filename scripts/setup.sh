@@ -17,6 +17,7 @@ DEB_PKGS=(
     chromium
     cmake
     git
+    gtkwave
     iverilog
     libclang-rt-14-dev
     libeigen3-dev

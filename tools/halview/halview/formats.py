@@ -9,7 +9,9 @@ Values: bits 0/1, integers in decimal, floats as Python's repr (exact).
 VCD: one variable per channel under nested scopes made from the dotted
 name (``siggen.0.sine`` -> scope siggen, scope 0, var sine); bit as a
 1-bit wire, float as real, s32/s64 as integer, u32/u64 as wire vectors.
-Only changes are dumped.  Time is the session's clock (simulated time
+Only changes are dumped, and the last record's time ends the file (a
+viewer shows the whole capture even when nothing changed at its end).
+Time is the session's clock (simulated time
 under ``halrun -S``) in ns, unless a time offset/scale is given (merging
 with a virtual board's dump in ps).
 """
@@ -135,13 +137,17 @@ def write_vcd(cap: Capture, out: IO[str], title: str = "halscope capture") -> No
     ):
         out.write(line + "\n")
     out.write("$upscope $end\n$enddefinitions $end\n")
-    write_vcd_body(sorted(vcd_changes(cap, idents), key=lambda x: x[0]), out)
+    last = write_vcd_body(sorted(vcd_changes(cap, idents), key=lambda x: x[0]), out)
+    if cap.length and last != int(cap.times()[-1]):
+        out.write(f"#{int(cap.times()[-1])}\n")
 
 
-def write_vcd_body(changes: Iterable[tuple[int, str]], out: IO[str]) -> None:
+def write_vcd_body(changes: Iterable[tuple[int, str]], out: IO[str]) -> int | None:
+    """The changes under their time stamps; returns the last time stamp."""
     last = None
     for t, line in changes:
         if t != last:
             out.write(f"#{t}\n")
             last = t
         out.write(line + "\n")
+    return last
