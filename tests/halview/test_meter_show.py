@@ -4,7 +4,10 @@ the values halcmd getp/gets prints, the errors its setp/sets prints."""
 
 from __future__ import annotations
 
+import os
+import pty
 import re
+import select
 import subprocess
 import time
 from pathlib import Path
@@ -83,6 +86,84 @@ def test_halmeter_small_and_count(live: LiveHal) -> None:
     assert r.stdout.split()[1:] == ["siggen.0.amplitude", "2.5"]
 
 
+def test_halmeter_reports_an_unloaded_component(live: LiveHal) -> None:
+    """A pin whose component is unloaded is reported, not crashed on, and
+    watched again once the component is back (with its new value)."""
+    p = live.start(BIN / "halmeter", "--text", "--interval", "0.02", "siggen.0.amplitude")
+    assert p.stdout is not None
+    assert p.stdout.readline().split()[1:] == ["siggen.0.amplitude", "2.5"]
+    assert live.halcmd("unloadrt", "siggen").returncode == 0
+    assert p.stdout.readline().split()[1:] == ["siggen.0.amplitude", "removed"]
+    assert live.halcmd("loadrt", "siggen").returncode == 0
+    assert p.stdout.readline().split()[1:] == [
+        "siggen.0.amplitude",
+        live.getp("siggen.0.amplitude"),
+    ]
+    assert p.poll() is None
+    p.terminate()
+    assert p.wait(timeout=10) == 0
+
+
+class Terminal:
+    """halmeter on a terminal (a pty)."""
+
+    def __init__(self, live: LiveHal, args: list[str]) -> None:
+        self.master, slave = pty.openpty()
+        self.p = subprocess.Popen(
+            [str(BIN / "halmeter"), "--interval", "0.02", *args],
+            env=live.env,
+            stdin=slave,
+            stdout=slave,
+            stderr=subprocess.PIPE,
+        )
+        os.close(slave)
+        self.raw = b""
+
+    def frame(self, until: str, timeout: float = 20) -> str:
+        """The last complete frame drawn (escape sequences removed) once it
+        shows `until`."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if select.select([self.master], [], [], 0.1)[0]:
+                self.raw += os.read(self.master, 65536)
+            frames = re.split(rb"\x1b\[\d+F", self.raw)
+            for frame in reversed(frames[:-1] if len(frames) > 1 else frames):
+                text = re.sub(rb"\x1b\[[0-9;]*[A-Za-z]", b"", frame).decode()
+                text = text.replace("\r", "")
+                if until in text:
+                    return text
+        raise AssertionError(f"{until!r} never shown: {self.raw[-500:]!r}")
+
+    def close(self) -> int:
+        self.p.terminate()
+        rc = self.p.wait(timeout=10)
+        os.close(self.master)
+        return rc
+
+
+def test_halmeter_terminal_redraws(live: LiveHal) -> None:
+    """On a terminal: one line per item (kind, name, value), redrawn in
+    place (cursor back up over the items); -s shows the values only;
+    LinuxCNC's -g X Y WIDTH is taken and ignored."""
+    t = Terminal(live, ["pin", "siggen.0.amplitude", "sig", "free"])
+    try:
+        text = t.frame("-7")
+        assert [line.split() for line in text.splitlines()] == [
+            ["pin", "siggen.0.amplitude", "2.5"],
+            ["sig", "free", "-7"],
+        ]
+        live.halcmd("sets", "free", "1234")
+        assert t.frame("1234").splitlines()[1].split() == ["sig", "free", "1234"]
+        assert b"\x1b[2F" in t.raw, "redrawn in place: two lines up"
+    finally:
+        assert t.close() == 0
+    t = Terminal(live, ["-s", "-g", "10", "20", "300", "sig", "free"])
+    try:
+        assert t.frame("1234").splitlines() == ["1234"]
+    finally:
+        assert t.close() == 0
+
+
 @pytest.mark.parametrize(
     "args,message",
     [
@@ -132,6 +213,99 @@ def test_halshow_text_tree(tmp_path: Path) -> None:
         assert float(val) == float(row[3]) if typ == "float" else val == row[3]
         if row[-2] == "==>":
             assert link == row[-1]
+
+
+SECTIONS_HAL = """\
+loadrt threads name1=fast period1=100000 name2=slow period2=1000000 fp2=0
+loadrt siggen num_chan=2
+loadrt and2 count=1
+addf siggen.0.update fast
+addf and2.0 slow
+addf siggen.1.update fast 1
+net sq siggen.0.clock and2.0.in0
+net out and2.0.out
+newsig lone s32
+sets lone -3
+simrun 1ms
+loadusr -w halshow --text
+show funct
+show thread
+show sig
+"""
+
+
+def section(lines: list[str], title: str) -> list[str]:
+    start = next(i for i, line in enumerate(lines) if line.startswith(title + " ("))
+    end = next(
+        (i for i in range(start + 1, len(lines)) if not lines[i].startswith(" ")), len(lines)
+    )
+    return lines[start + 1 : end]
+
+
+def test_halshow_text_signals_functions_threads(tmp_path: Path) -> None:
+    """The tree's signals, functions and threads say what halcmd's show
+    says: type, value and pins of each signal; each function's owner, fp
+    flag and users; each thread's period, fp flag and functions in order."""
+    r = halrun(tmp_path, SECTIONS_HAL)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    ours = {}
+    for line in section(lines, "Signals"):
+        m = re.fullmatch(r"  (\S+) = (\w+) (\S+)(?:  \[(.*)\])?", line)
+        assert m, line
+        ours[m.group(1)] = (m.group(2), m.group(3), sorted((m.group(4) or "").split()))
+    theirs = {}
+    at = lines.index("Signals:") + 2
+    while at < len(lines) and lines[at].strip():
+        typ, val, name = lines[at].split()
+        at += 1
+        pins = []
+        while at < len(lines) and lines[at].split()[:1] in (["<=="], ["==>"], ["<=>"]):
+            pins.append(lines[at].split()[1])
+            at += 1
+        theirs[name] = (typ, val, sorted(pins))
+    assert ours == theirs and set(ours) == {"out", "sq", "lone"}
+
+    functs = {}
+    for line in section(lines, "Functions"):
+        m = re.fullmatch(r"  (\S+) = owner (\d+), (fp|no fp), in (\d+) thread\(s\)", line)
+        assert m, line
+        functs[m.group(1)] = (int(m.group(2)), "NO" if m.group(3) == "no fp" else "YES", m.group(4))
+    at = lines.index("Exported Functions:") + 2
+    table = {}
+    while lines[at].strip():
+        owner, _, _, fp, users, name = lines[at].split()
+        table[name] = (int(owner), fp, users)
+        at += 1
+    assert functs == table and len(table) == 3
+
+    def threads(rows: list[str], head: str) -> list[tuple[str, ...]]:
+        """(name, period, fp) per thread, each followed by (function,) in order."""
+        out: list[tuple[str, ...]] = []
+        for row in rows:
+            m, w = re.fullmatch(head, row), row.split()
+            if m:
+                out.append(m.groups())
+            elif len(w) == 2 and w[0].isdigit():
+                out.append((w[1],))
+        return out
+
+    ours_t = threads(section(lines, "Threads"), r"  (\S+) = period (\d+) ns, (fp|no fp)")
+    ours_t = [
+        (t[0], t[1], "NO" if t[2] == "no fp" else "YES") if len(t) == 3 else t for t in ours_t
+    ]
+    start = lines.index("Realtime Threads:") + 2
+    end = lines.index("Signals:")
+    theirs_t = threads(lines[start:end], r"\s+(\d+)\s+(YES|NO)\s+(\S+) \(.*\)")
+    theirs_t = [(t[2], t[0], t[1]) if len(t) == 3 else t for t in theirs_t]
+    assert ours_t == theirs_t
+    assert ours_t == [
+        ("slow", "1000000", "NO"),
+        ("and2.0",),
+        ("fast", "100000", "YES"),
+        ("siggen.1.update",),
+        ("siggen.0.update",),
+    ]
 
 
 def test_halshow_set_and_watch_like_halcmd(live: LiveHal, tmp_path: Path) -> None:

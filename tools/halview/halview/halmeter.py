@@ -108,7 +108,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("items", nargs="*", help="[pin|sig|param] NAME ...")
     p.add_argument("-s", "--small", action="store_true", help="values only")
-    p.add_argument("-g", nargs="+", metavar="N", help="window geometry (ignored: no window)")
+    p.add_argument(
+        "-g", nargs=2, metavar=("X", "Y"), help="window position [and width] (ignored: no window)"
+    )
     p.add_argument("--text", action="store_true", help="print value changes, one per line")
     p.add_argument("--interval", type=float, default=0.1, help="seconds between polls")
     p.add_argument("--count", type=int, default=0, help="--text: stop after N lines")
@@ -116,8 +118,20 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def drop_width(argv: list[str]) -> list[str]:
+    """LinuxCNC's `-g X Y [WIDTH]`: the optional width, when a number,
+    is taken out so that it is not read as a name to watch."""
+    out = list(argv)
+    for i, w in enumerate(out):
+        if w == "-g" and i + 3 < len(out):
+            if out[i + 3].lstrip("-").isdigit():
+                del out[i + 3]
+            break
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
-    a = build_parser().parse_args(argv)
+    a = build_parser().parse_args(drop_width(sys.argv[1:] if argv is None else argv))
     stop = _Stop()
     signal.signal(signal.SIGTERM, stop.handler)
     signal.signal(signal.SIGINT, stop.handler)
