@@ -31,6 +31,7 @@ DEB_PKGS=(
     python3-dev
     python3-venv
     clang
+    tcl-dev
     valgrind
     yosys
     zlib1g-dev

@@ -5,9 +5,11 @@ For every INI file of the chosen sample configurations: copy the
 configuration into a temporary directory, prepare its [HAL] HALFILEs and
 HALCMDs with halprep (motion, kinematics, iocontrol, halui and GUI lines
 removed; boards pointed at virtual boards), start the virtual boards and
-parallel ports it needs, and run everything in one `halrun -S -k -i INI`
-session followed by 100 ms of simulated time.  A file is *loaded* when none
-of its lines failed.  The report (Markdown, also JSON) lists each file's
+parallel ports it needs, and run every file by its own program in one HAL
+session on the simulated clock, as LinuxCNC does (`halcmd -k -i INI -f` for
+a .hal file; haltcl for a .tcl file, with the same rule applied to each
+HAL command it makes, see tclfilter.py), followed by 100 ms of simulated
+time.  A file is *loaded* when none of its lines failed.  The report (Markdown, also JSON) lists each file's
 result; the exit status is 1 when any file failed.
 
 The sample configurations are LinuxCNC's files: they are read from
@@ -26,7 +28,6 @@ import subprocess
 import sys
 import tempfile
 import time
-import uuid
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -35,10 +36,12 @@ ROOT = HERE.parents[1]
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(ROOT / "tests" / "common"))
 import halprep  # noqa: E402
+import session  # noqa: E402
+import tclfilter  # noqa: E402
 import vboard  # noqa: E402
 
 SAMPLES = Path("/usr/share/doc/linuxcnc/examples/sample-configs")
-HALLIB = Path("/usr/share/linuxcnc/hallib")
+HALLIB = session.HALLIB
 DEFAULT_SETS = [
     "by_interface/mesa/hm2-*",
     "by_interface/pluto",
@@ -204,23 +207,27 @@ def _source_file(name: str, cfgdir: Path, work: Path) -> tuple[Path | None, Path
     return (src if src.exists() else None, dst)
 
 
-def _prepare_files(
-    res: ConfigResult, ini: halprep.Ini, cfgdir: Path, work: Path, hw: Hardware
-) -> tuple[list[str], dict[str, FileResult]]:
-    """Prepared copies in work; the source lines of the session; the
-    results by the name the session's error lines will use."""
-    ctx = halprep.Context()
-    for p in sorted(cfgdir.iterdir()):
-        if p.is_file() and p.stat().st_size < 1 << 20:
-            part = halprep.program_part(p.read_text(errors="replace"))
-            if part:
-                ctx.programs[p.name] = part
-    sources: list[str] = []
-    by_name: dict[str, FileResult] = {}
+@dataclass
+class Step:
+    """One HALFILE (or the HALCMD lines) and how it runs: a .hal file
+    prepared and run by halcmd, a .tcl file run by haltcl with the rule
+    applied to its commands as they come."""
+
+    fr: FileResult
+    kind: str  # hal, tcl, halcmd
+    src: Path | None = None  # the original file
+    dst: Path | None = None  # the prepared copy (hal, halcmd)
+    args: list[str] = field(default_factory=list)  # HALFILE arguments (tcl)
+    prepared: bool = False
+
+
+def _plan(res: ConfigResult, ini: halprep.Ini, cfgdir: Path, work: Path) -> list[Step]:
+    """The configuration's HALFILEs and HALCMD lines in LinuxCNC's order."""
+    steps = []
     for entry in ini.all("HAL", "HALFILE"):
         if not entry.split():
             continue  # an empty HALFILE= names nothing
-        name = entry.split()[0]
+        name, *args = entry.split()
         fr = FileResult(name)
         res.files.append(fr)
         src, dst = _source_file(name, cfgdir, work)
@@ -228,48 +235,43 @@ def _prepare_files(
             fr.status = "absent"
             fr.first_error = f"{name}: not in LinuxCNC's package either (LinuxCNC fails here too)"
             continue
-        if src.suffix == ".tcl":
-            fr.status = "failed"
-            fr.first_error = (
-                f"{name}: a Tcl HAL file (run by haltcl), which this project does not have"
-            )
-            continue
-        prep = halprep.prepare(src.read_text(errors="replace"), ini, ctx, hw.hook)
-        fr.removed, fr.rewritten = prep.count("remove"), prep.count("rewrite")
-        fr.note = "; ".join(a.why for _, a in prep.actions if a.kind == "keep" and a.why)
-        dst.parent.mkdir(parents=True, exist_ok=True)
-        dst.write_text(prep.text)
-        rel = str(dst.relative_to(work))
-        sources.append(rel)
-        by_name[rel] = fr
+        steps.append(Step(fr, "tcl" if src.suffix == ".tcl" else "hal", src, dst, args))
     cmds = ini.all("HAL", "HALCMD")
     if cmds:
         fr = FileResult("HALCMD")
         res.files.append(fr)
-        prep = halprep.prepare("\n".join(cmds) + "\n", ini, ctx, hw.hook)
-        fr.removed, fr.rewritten = prep.count("remove"), prep.count("rewrite")
-        (work / "compat-halcmd.hal").write_text(prep.text)
-        sources.append("compat-halcmd.hal")
-        by_name["compat-halcmd.hal"] = fr
-    return sources, by_name
+        steps.append(Step(fr, "halcmd", None, work / "compat-halcmd.hal"))
+    return steps
 
 
-def _twopass(work: Path, sources: list[str], ini: halprep.Ini) -> None:
-    """TWOPASS=on: all loadrt lines first, merged per module, as LinuxCNC."""
-    lines: list[list[str]] = []
-    for rel in sources:
-        path = work / rel
-        out = []
-        for text in path.read_text().split("\n"):
-            body = text.split("#", 1)[0].split()
-            if body and body[0] == "loadrt" and len(body) > 1:
-                lines.append(halprep.resolve(" ".join(body), ini).split())
-                out.append(f"#compat: twopass: {text.strip()}")
-            else:
-                out.append(text)
-        path.write_text("\n".join(out))
-    (work / "compat-twopass.hal").write_text("\n".join(halprep.twopass_merge(lines)) + "\n")
-    sources.insert(0, "compat-twopass.hal")
+def _context_for(cfgdir: Path) -> halprep.Context:
+    """The rule's context, knowing which programs of the configuration
+    belong to a removed part."""
+    ctx = halprep.Context()
+    for p in sorted(cfgdir.iterdir()):
+        if p.is_file() and p.stat().st_size < 1 << 20:
+            part = halprep.program_part(p.read_text(errors="replace"))
+            if part:
+                ctx.programs[p.name] = part
+    return ctx
+
+
+def _prepare(step: Step, ini: halprep.Ini, ctx: halprep.Context, hw: Hardware, work: Path) -> str:
+    """Write the prepared copy of a .hal step; its path relative to work."""
+    assert step.dst is not None
+    if step.kind == "halcmd":
+        text = "\n".join(ini.all("HAL", "HALCMD")) + "\n"
+    else:
+        assert step.src is not None
+        text = step.src.read_text(errors="replace")
+    prep = halprep.prepare(text, ini, ctx, hw.hook)
+    fr = step.fr
+    fr.removed, fr.rewritten = prep.count("remove"), prep.count("rewrite")
+    fr.note = "; ".join(a.why for _, a in prep.actions if a.kind == "keep" and a.why)
+    step.dst.parent.mkdir(parents=True, exist_ok=True)
+    step.dst.write_text(prep.text)
+    step.prepared = True
+    return str(step.dst.relative_to(work))
 
 
 INFORMATIVE = re.compile(
@@ -308,16 +310,13 @@ def _cause(line: str, context: str) -> str:
     return "halcmd: " + re.sub(r"'[^']*'", "'…'", re.sub(r"^\S+:\d+: ", "", line))
 
 
-def _parse_output(out: str, by_name: dict[str, FileResult], res: ConfigResult) -> None:
+def _parse_output(out: str, fr: FileResult) -> None:
+    """Every `FILE:LINE: message` line a step printed counts against its
+    file (a file it sources included)."""
     recent: list[str] = []
     for line in out.splitlines():
         m = ERROR_LINE.match(line)
-        fr = by_name.get(m.group("file")) if m else None
-        if m and m.group("file") == "compat-main.hal":
-            res.run_error = res.run_error or f"{line} ({' / '.join(recent[-2:])})"
-            recent = []
-            continue
-        if fr is None:
+        if m is None:
             if line.strip():
                 recent.append(line.strip())
             continue
@@ -330,19 +329,125 @@ def _parse_output(out: str, by_name: dict[str, FileResult], res: ConfigResult) -
             fr.causes.append(cause)
         if fr.status != "failed":
             fr.status = "failed"
-            display = fr.name if fr.name != "HALCMD" else "HALCMD"
-            fr.first_error = f"{display}:{m.group('line')}: {m.group('msg')}"  # type: ignore[union-attr]
+            where = m.group("file")
+            if where.startswith(f"{HALLIB}/"):
+                where = "LIB:" + where[len(str(HALLIB)) + 1 :]
+            if fr.name.endswith(".tcl") and where != fr.name:
+                where = f"{fr.name} → {where}"
+            fr.first_error = f"{where}:{m.group('line')}: {m.group('msg')}"
             fr.context = _context(recent)
         recent = []
 
 
+def _twopass(steps: list[Step], work: Path, ini: halprep.Ini) -> Path:
+    """TWOPASS=on: all loadrt lines of the .hal files first, merged per
+    module, as LinuxCNC does; returns the file with the merged lines."""
+    lines: list[list[str]] = []
+    for step in steps:
+        if step.kind == "tcl" or step.dst is None:
+            continue
+        out = []
+        for text in step.dst.read_text().split("\n"):
+            body = text.split("#", 1)[0].split()
+            if body and body[0] == "loadrt" and len(body) > 1:
+                lines.append(halprep.resolve(" ".join(body), ini).split())
+                out.append(f"#compat: twopass: {text.strip()}")
+            else:
+                out.append(text)
+        step.dst.write_text("\n".join(out))
+    merged = work / "compat-twopass.hal"
+    merged.write_text("\n".join(halprep.twopass_merge(lines)) + "\n")
+    return merged
+
+
+def _run_tcl(
+    sess: session.Session,
+    step: Step,
+    ini: halprep.Ini,
+    ctx: halprep.Context,
+    hw: Hardware,
+    twopass: bool,
+) -> None:
+    """A .tcl HALFILE: haltcl runs it with the rule applied to every HAL
+    command it makes (tclfilter)."""
+    assert step.src is not None
+    server = tclfilter.Server(ini, ctx, hw.hook)
+    try:
+        wrapper = sess.work / f"compat-tcl-{step.src.stem}.tcl"
+        # the configuration's own file runs from its copy (error lines name
+        # it as the INI does); a LIB: file from LinuxCNC's HAL library
+        script = step.src
+        if step.dst is not None and step.dst.exists():
+            script = step.dst.relative_to(sess.work)
+        wrapper.write_text(tclfilter.wrapper(server.port, script, step.args, twopass))
+        rc, out = sess.run(
+            [str(sess.bindir / "haltcl"), "-i", "compat.ini", wrapper.name], server.serve
+        )
+    finally:
+        server.close()
+    fr = step.fr
+    for _, a in server.actions:
+        if a.kind in ("remove", "rewrite"):
+            counts = fr.removed if a.kind == "remove" else fr.rewritten
+            counts[a.part] = counts.get(a.part, 0) + 1
+    notes = [a.why for _, a in server.actions if a.kind == "keep" and a.why]
+    fr.note = "; ".join(dict.fromkeys(notes))
+    _parse_output(out, fr)
+    if rc != 0 and fr.status != "failed":
+        recent = [ln.strip() for ln in out.splitlines() if ln.strip()]
+        fr.status, fr.errors = "failed", 1
+        fr.first_error = f"{fr.name}: haltcl exited with status {rc}"
+        fr.context = _context(recent)
+        fr.causes.append(f"haltcl: exit status {rc} ({' / '.join(recent[-2:])})")
+
+
+def _run_steps(
+    sess: session.Session,
+    steps: list[Step],
+    ini: halprep.Ini,
+    ctx: halprep.Context,
+    hw: Hardware,
+    res: ConfigResult,
+) -> None:
+    twopass = (ini.get("HAL", "TWOPASS") or "").lower() not in ("", "0", "off", "no", "false")
+    if twopass:
+        for step in steps:
+            if step.kind != "tcl":
+                _prepare(step, ini, ctx, hw, sess.work)
+        merged = _twopass(steps, sess.work, ini)
+        fr = FileResult("TWOPASS loadrt lines")
+        res.files.insert(0, fr)
+        steps.insert(0, Step(fr, "hal", None, merged, prepared=True))
+    for step in steps:
+        if step.kind == "tcl":
+            _run_tcl(sess, step, ini, ctx, hw, twopass)
+            continue
+        rel = (
+            str(step.dst.relative_to(sess.work))
+            if step.prepared and step.dst
+            else (_prepare(step, ini, ctx, hw, sess.work))
+        )
+        res.hardware = hw.used
+        _, out = sess.halcmd("-k", "-i", "compat.ini", "-f", rel)
+        _parse_output(out, step.fr)
+    res.hardware = hw.used
+
+
+def _run_error(rc: int, out: str, what: str) -> str:
+    errors = [ln for ln in out.splitlines() if ERROR_LINE.match(ln)]
+    if rc == 0 and not errors:
+        return ""
+    return f"{what}: " + (errors[0] if errors else f"exit status {rc}: {out[-300:]}")
+
+
 def run_config(
-    ini_path: Path, samples: Path, halrun: Path, timeout: float, keep: Path | None = None
+    ini_path: Path, samples: Path, bindir: Path, timeout: float, keep: Path | None = None
 ) -> ConfigResult:
     res = ConfigResult(str(ini_path.relative_to(samples)))
     t0 = time.monotonic()
     tmp = Path(tempfile.mkdtemp(prefix="cp"))
     hw = Hardware(tmp)
+    sess = None
     try:
         work = tmp / "cfg"
         _copy_config(ini_path, work)
@@ -353,39 +458,21 @@ def run_config(
         (work / "compat.ini").write_text(text)
         ini = halprep.parse_ini(text)
         res.postgui = ini.all("HAL", "POSTGUI_HALFILE")
-        sources, by_name = _prepare_files(res, ini, ini_path.parent, work, hw)
-        res.hardware = hw.used
-        if (ini.get("HAL", "TWOPASS") or "").lower() not in ("", "0", "off", "no", "false"):
-            _twopass(work, sources, ini)
-            by_name["compat-twopass.hal"] = FileResult("TWOPASS loadrt lines")
-            res.files.insert(0, by_name["compat-twopass.hal"])
-        main = "".join(f"source {s}\n" for s in sources) + f"simrun {RUN_NS}\n"
-        (work / "compat-main.hal").write_text(main)
-        env = dict(os.environ)
-        env["HAL_INSTANCE"] = "compat-" + uuid.uuid4().hex[:10]
-        env["PATH"] = f"{build_dir() / 'bin'}:{env.get('PATH', '')}"
-        # userspace components written in Python import our hal module
-        env["PYTHONPATH"] = str(build_dir() / "lib" / "python")
-        env.pop("HAL_SIMCLOCK", None)
-        try:
-            r = subprocess.run(
-                [str(halrun), "-S", "-k", "-i", "compat.ini", "-f", "compat-main.hal"],
-                cwd=work,
-                env=env,
-                capture_output=True,
-                text=True,
-                timeout=timeout,
-            )
-            out = r.stdout + "\n" + r.stderr
-            _parse_output(r.stderr + "\n" + r.stdout, by_name, res)
-            if r.returncode not in (0, 1) or "Sanitizer" in out:
-                res.run_error = res.run_error or f"halrun exited with {r.returncode}: {out[-300:]}"
-        except subprocess.TimeoutExpired:
-            res.run_error = f"no result within {timeout:.0f} s"
-            subprocess.run([str(halrun), "-U"], env=env, capture_output=True, timeout=60)
+        steps = _plan(res, ini, ini_path.parent, work)
+        ctx = _context_for(ini_path.parent)
+        sess = session.Session(bindir, work, "compat.ini", t0 + timeout)
+        _run_steps(sess, steps, ini, ctx, hw, res)
+        rc, out = sess.halcmd("simrun", RUN_NS)
+        res.run_error = _run_error(rc, out, f"simrun {RUN_NS}")
+    except session.Timeout:
+        res.run_error = f"no result within {timeout:.0f} s"
     except Exception as e:  # a broken configuration is a result, not a crash
         res.run_error = res.run_error or f"preparation failed: {e}"
     finally:
+        if sess is not None:
+            out = sess.end()
+            if "Sanitizer" in sess.log_path.read_text(errors="replace"):
+                res.run_error = res.run_error or f"a sanitizer reported an error: {out[-300:]}"
         hw.stop()
         if keep is not None and (tmp / "cfg").exists():
             dest = keep / res.ini
@@ -512,16 +599,17 @@ def main() -> int:
     )
     args = ap.parse_args()
     ensure_linuxcnc(args.samples)
-    halrun = build_dir() / "bin" / "halrun"
-    if not halrun.exists():
-        print(f"compat: {halrun} is not built (run make)", file=sys.stderr)
-        return 2
+    bindir = build_dir() / "bin"
+    for prog in ("halcmd", "haltcl", "halrun"):
+        if not (bindir / prog).exists():
+            print(f"compat: {bindir / prog} is not built (run make)", file=sys.stderr)
+            return 2
     inis = find_inis(args.samples, args.set or DEFAULT_SETS)
     if args.only:
         inis = [p for p in inis if args.only in str(p)]
     results = []
     for i, ini in enumerate(inis, 1):
-        r = run_config(ini, args.samples, halrun, args.timeout, args.keep)
+        r = run_config(ini, args.samples, bindir, args.timeout, args.keep)
         results.append(r)
         state = "ok" if r.ok else "FAILED"
         print(f"[{i}/{len(inis)}] {r.ini}: {state} ({r.seconds:.1f} s)", flush=True)

@@ -162,11 +162,15 @@ class Action:
 KEEP = Action("keep")
 
 
-def _words(text: str) -> list[str]:
+def split_words(text: str) -> list[str]:
+    """A halcmd line's words, quotes removed."""
     try:
         return shlex.split(text, comments=False, posix=True)
     except ValueError:
         return text.split()
+
+
+_words = split_words
 
 
 def _module_names(words: list[str]) -> list[str]:
@@ -317,7 +321,7 @@ def classify(line: str, ini: Ini, ctx: Context) -> Action:
         if action.kind != "remove":
             ctx.dead_signals.pop(res[1], None)
         return action
-    if cmd in ("sets", "gets", "stype") and len(flat) > 1 and flat[1] in ctx.dead_signals:
+    if cmd in ("sets", "gets", "stype", "delsig") and len(flat) > 1 and flat[1] in ctx.dead_signals:
         return Action("remove", ctx.dead_signals[flat[1]], f"{cmd} {flat[1]} (its net was removed)")
     if cmd in HAL_COMMANDS_WITH_OBJECTS and len(flat) > 1:
         part = ctx.owner(flat[1])

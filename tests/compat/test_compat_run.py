@@ -31,6 +31,7 @@ CONFIG = "firmware=hm2/5i20/SVST8_4.BIT num_encoders=1 num_pwmgens=1 num_stepgen
 [HAL]
 HALFILE = good.hal
 HALFILE = absent.hal
+HALFILE = good.tcl 7
 HALCMD = setp parport.0.pin-02-out 1
 POSTGUI_HALFILE = panel.hal
 """
@@ -58,10 +59,33 @@ loadusr -W hal_manualtoolchange
 net tool-change iocontrol.0.tool-change => hal_manualtoolchange.change
 """
 
+GOOD_TCL = """# a Tcl HAL file as LinuxCNC's sim configurations write them
+loadrt $::KINS(KINEMATICS)
+loadusr -W hal_manualtoolchange
+loadrt or2 count=1
+addf or2.0 servo-thread
+proc wire {n} {
+    net tcl-home-$n or2.0.out => joint.$n.home-sw-in
+}
+for {set j 0} {$j < $::KINS(JOINTS)} {incr j} {
+    wire $j
+}
+setp or2.0.in0 [lindex $::argv 0]-6
+net tcl-in or2.0.in1
+"""
+
 BAD_INI = """
 [HAL]
 HALFILE = bad.hal
-HALFILE = LIB:basic_sim.tcl
+HALFILE = bad.tcl
+"""
+
+BAD_TCL = """loadrt or2 count=1
+proc bad {} {
+    setp or2.0.nosuch 1
+}
+bad
+setp or2.0.in0 1
 """
 
 BAD_HAL = """loadrt threads name1=servo-thread period1=1000000
@@ -81,11 +105,15 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, list[dict[s
         assert p.exists(), f"{p} is not built (run make)"
     base = tmp_path_factory.mktemp("compat")
     samples = base / "samples"
-    for d, ini, hal in (("good", GOOD_INI, GOOD_HAL), ("bad", BAD_INI, BAD_HAL)):
+    for d, ini, hal, tcl in (
+        ("good", GOOD_INI, GOOD_HAL, GOOD_TCL),
+        ("bad", BAD_INI, BAD_HAL, BAD_TCL),
+    ):
         cfg = samples / "set" / d
         cfg.mkdir(parents=True)
         (cfg / f"{d}.ini").write_text(ini)
         (cfg / f"{d}.hal").write_text(hal)
+        (cfg / f"{d}.tcl").write_text(tcl)
     (samples / "other" / "x").mkdir(parents=True)
     (samples / "other" / "x" / "x.ini").write_text("[HAL]\nHALFILE = x.hal\n")
     out = base / "out"
@@ -114,6 +142,14 @@ def test_good_configuration_loads(run: Run) -> None:
     files = {f["name"]: f for f in good["files"]}  # type: ignore[union-attr]
     assert files["good.hal"]["status"] == "loaded", files["good.hal"]
     assert files["HALCMD"]["status"] == "loaded"
+    # the Tcl file ran through haltcl with the same rule: its kinematics
+    # and iocontrol commands removed, the net to a joint pin rewritten
+    # (made in a procedure called from a loop over an INI value); its
+    # HALFILE argument is $::argv
+    tcl = files["good.tcl"]
+    assert tcl["status"] == "loaded", tcl
+    assert tcl["removed"] == {"kinematics": 1, "iocontrol": 1}
+    assert tcl["rewritten"] == {"motion": 1}
     assert files["absent.hal"]["status"] == "absent"
     assert good["run_error"] == ""
     assert good["hardware"] == ["vboard 5i20", "vparport"]
@@ -135,8 +171,12 @@ def test_bad_configuration_names_file_line_and_cause(run: Run) -> None:
         "component nosuch_component",
         "a pin, parameter, signal or function that does not exist (often a consequence)",
     ]
-    tcl = files["LIB:basic_sim.tcl"]
-    assert tcl["status"] == "failed" and "Tcl HAL file" in tcl["first_error"]
+    # a Tcl file stops at its first failing HAL command, named by the
+    # file's line (inside a procedure: the line of the command itself)
+    tcl = files["bad.tcl"]
+    assert tcl["status"] == "failed"
+    assert tcl["first_error"] == "bad.tcl:3: parameter or pin 'or2.0.nosuch' not found"
+    assert tcl["errors"] == 1
     assert "- 1 × component nosuch_component" in text
 
 

@@ -3,7 +3,8 @@
 
 Every directory tests/hal/<name>/ is one test:
 
-* ``test.hal`` + ``expected``: ``halrun -f test.hal`` runs in the directory
+* ``test.hal`` (or ``test.tcl``, a Tcl HAL file that halrun runs with
+  haltcl) + ``expected``: ``halrun -f test.hal`` runs in the directory
   in a fresh HAL_INSTANCE; its stdout, normalized (halnorm.py), must equal
   ``expected``.  Optional files: ``expected.stderr`` (stderr must equal it,
   normalized), ``halrun.args`` (extra halrun options, one line, e.g. ``-k``
@@ -40,7 +41,7 @@ HALRUN = BUILD / "bin" / "halrun"
 def _cases() -> list[Path]:
     out = []
     for d in sorted(HERE.iterdir()):
-        if d.is_dir() and ((d / "test.hal").exists() or (d / "test.sh").exists()):
+        if d.is_dir() and any((d / f).exists() for f in ("test.hal", "test.tcl", "test.sh")):
             out.append(d)
     return out
 
@@ -80,12 +81,13 @@ def test_hal(case: Path, tmp_path: Path) -> None:
                 env[k.strip()] = v.strip()
     _cleanup(env)
     try:
-        if (case / "test.hal").exists():
+        script = next((f for f in ("test.hal", "test.tcl") if (case / f).exists()), None)
+        if script is not None:
             args = []
             if (case / "halrun.args").exists():
                 args = (case / "halrun.args").read_text().split()
             proc = subprocess.run(
-                [str(HALRUN), *args, "-f", "test.hal"],
+                [str(HALRUN), *args, "-f", script],
                 cwd=case,
                 env=env,
                 capture_output=True,

@@ -26,6 +26,12 @@ typedef struct {
     int loadrt_done; /* number of loadrt done by this halcmd */
     int done;        /* quit/exit seen */
     char comp_name[HAL_NAME_LEN + 1];
+    /* Where output and error messages go (NULL: stdout, stderr).  haltcl
+     * points them at memory streams to make a command's output its Tcl
+     * result and its error message the Tcl error; an error of a command
+     * not read from a file then carries no "<commandline>:0: " prefix. */
+    FILE *out;
+    FILE *err;
 } halcmd_state_t;
 
 extern halcmd_state_t hc;
@@ -33,6 +39,8 @@ extern halcmd_state_t hc;
 void halcmd_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void halcmd_info(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void halcmd_output(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* The stream command output goes to (hc.out, or stdout). */
+FILE *halcmd_stdout(void);
 
 /* Execute one tokenized command; 0 on success. */
 int halcmd_dispatch(int argc, char **argv);

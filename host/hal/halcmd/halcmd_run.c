@@ -26,11 +26,13 @@ static void vprefix(FILE *out, const char *fmt, va_list ap)
     fflush(stdout);
     if (hc.filename != NULL)
         fprintf(out, "%s:%d: ", hc.filename, hc.linenum);
-    else
+    else if (out != hc.err)
         fprintf(out, "<commandline>:0: ");
     vfprintf(out, fmt, ap);
     fflush(out);
 }
+
+FILE *halcmd_stdout(void) { return hc.out != NULL ? hc.out : stdout; }
 
 void halcmd_error(const char *fmt, ...)
 {
@@ -38,7 +40,7 @@ void halcmd_error(const char *fmt, ...)
         return;
     va_list ap;
     va_start(ap, fmt);
-    vprefix(stderr, fmt, ap);
+    vprefix(hc.err != NULL ? hc.err : stderr, fmt, ap);
     va_end(ap);
 }
 
@@ -48,7 +50,7 @@ void halcmd_info(const char *fmt, ...)
         return;
     va_list ap;
     va_start(ap, fmt);
-    vprefix(stdout, fmt, ap);
+    vprefix(halcmd_stdout(), fmt, ap);
     va_end(ap);
 }
 
@@ -58,7 +60,7 @@ void halcmd_output(const char *fmt, ...)
         return;
     va_list ap;
     va_start(ap, fmt);
-    vfprintf(stdout, fmt, ap);
+    vfprintf(halcmd_stdout(), fmt, ap);
     va_end(ap);
 }
 

@@ -267,11 +267,11 @@ int do_save_cmd(int argc, char **argv)
             return -errno;
         }
     }
-    halcmd_set_out(f != NULL ? f : stdout);
+    halcmd_set_out(f != NULL ? f : halcmd_stdout());
     int rc = save_type(type);
     if (f != NULL)
         fclose(f);
-    halcmd_set_out(stdout);
+    halcmd_set_out(halcmd_stdout());
     if (rc)
         halcmd_error("Unknown 'save' type '%s'\n", type);
     return rc;
@@ -312,7 +312,7 @@ static void status_mem(const hal_q_status_t *st)
 int do_status_cmd(int argc, char **argv)
 {
     const char *type = argc > 1 ? argv[1] : "all";
-    halcmd_set_out(stdout);
+    halcmd_set_out(halcmd_stdout());
     hal_q_status_t st;
     if (hal_q_status(&st) != 0)
         return -EINVAL;

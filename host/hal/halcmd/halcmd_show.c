@@ -23,7 +23,7 @@ void o(const char *fmt, ...)
         return;
     va_list ap;
     va_start(ap, fmt);
-    vfprintf(out ? out : stdout, fmt, ap);
+    vfprintf(out ? out : halcmd_stdout(), fmt, ap);
     va_end(ap);
 }
 
@@ -368,7 +368,7 @@ int do_show_cmd(int argc, char **argv)
     const char *type = argc > 1 ? argv[1] : "all";
     int npat = argc > 2 ? argc - 2 : 0;
     char **pats = argv + 2;
-    out = stdout;
+    out = halcmd_stdout();
     if (strcmp(type, "all") == 0 || argc == 1) {
         show_comps(npat, pats);
         show_pins(npat, pats);
@@ -449,7 +449,7 @@ int do_list_cmd(int argc, char **argv)
         halcmd_error("Unknown 'list' type '%s'\n", type);
         return -EINVAL;
     }
-    out = stdout;
+    out = halcmd_stdout();
     qlist_t l;
     qlist_get(&l, kind);
     for (size_t i = 0; i < l.n; i++) {

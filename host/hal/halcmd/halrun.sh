@@ -1,11 +1,12 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0-or-later
 #
-# halrun - run a HAL session: start it, run a .hal file (or an interactive
-# halcmd), then stop the threads, unload everything and remove the session.
-# See docs/halrun.md.
+# halrun - run a HAL session: start it, run a .hal file with halcmd or a
+# .tcl file with haltcl (or an interactive halcmd or haltcl), then stop the
+# threads, unload everything and remove the session.  See docs/halrun.md.
 #
 #   halrun [-I] [-S] [halcmd options] [[-f] file.hal]
+#   halrun [-T] [-S] [-i INI] [[-f] file.tcl]
 #   halrun -U        clean up a session left behind by a crash
 #   halrun -h
 #
@@ -14,6 +15,7 @@
 THIS=$(basename "$0")
 BINDIR=$(cd "$(dirname "$(readlink -f "$0")")" && pwd)
 HALCMD="$BINDIR/halcmd"
+HALTCL="$BINDIR/haltcl"
 
 help() {
     "$HALCMD" -h
@@ -21,21 +23,25 @@ help() {
 
 $THIS usage:
   $THIS [-I] [-S] [halcmd options] [filename.hal]
-  $THIS -f filename.hal      same as giving the file name
+  $THIS [-T] [-S] [-i INI] [filename.tcl]
+  $THIS -f filename          same as giving the file name
   $THIS -I                   interactive halcmd (after the file, if any)
+  $THIS -T                   interactive haltcl (after the file, if any)
   $THIS -S                   simulated clock (same as HAL_SIMCLOCK=1)
   $THIS -U                   clean up after a crashed session
   $THIS -h                   this help
 halcmd options passed on: -e -i INI -k -q -Q -R -s -v -V
+A .tcl file runs with haltcl, which takes only -i INI.
 Session: HAL_INSTANCE=${HAL_INSTANCE:-0}
 EOF
 }
 
 INTERACTIVE=false
+TCL_INTERACTIVE=false
 filename=""
 inifile=""
 args=()
-while getopts "ef:hi:kqsvIRQSUV" opt; do
+while getopts "ef:hi:kqsvIRQSTUV" opt; do
     case $opt in
     h) help; exit 0 ;;
     U) "$HALCMD" --session-kill >/dev/null 2>&1
@@ -44,6 +50,7 @@ while getopts "ef:hi:kqsvIRQSUV" opt; do
     f) filename=$OPTARG ;;
     i) inifile=$OPTARG ;;
     I) INTERACTIVE=true ;;
+    T) TCL_INTERACTIVE=true ;;
     S) export HAL_SIMCLOCK=1 ;;
     e|k|q|s|v|R|Q|V) args+=("-$opt") ;;
     \?) echo ""; echo "For usage try: $THIS -h"; exit 1 ;;
@@ -63,9 +70,15 @@ if [ $# -gt 0 ]; then
         exit 1
     fi
 fi
+tclargs=()
 if [ -n "$inifile" ]; then
     args+=(-i "$inifile")
+    tclargs+=(-i "$inifile")
 fi
+IS_TCL=false
+case "$filename" in
+*.tcl) IS_TCL=true ;;
+esac
 
 # rtapi_app (started by halcmd on demand) shares this terminal; halrun
 # waits for it at the end.  The halcmds run here leave the session to
@@ -104,7 +117,7 @@ trap 'end_session; exit 143' TERM
 trap 'end_session; exit 129' HUP
 
 run_halcmd() {
-    "$HALCMD" "$@" <&0 &
+    "$@" <&0 &
     child=$!
     wait "$child"
     local rc=$?
@@ -114,12 +127,18 @@ run_halcmd() {
 
 result=0
 if [ -n "$filename" ]; then
-    run_halcmd "${args[@]}" -f "$filename"; result=$?
-else
+    if $IS_TCL; then
+        run_halcmd "$HALTCL" "${tclargs[@]}" "$filename"; result=$?
+    else
+        run_halcmd "$HALCMD" "${args[@]}" -f "$filename"; result=$?
+    fi
+elif ! $TCL_INTERACTIVE; then
     INTERACTIVE=true
 fi
-if $INTERACTIVE; then
-    run_halcmd "${args[@]}" -kf
+if $TCL_INTERACTIVE; then
+    run_halcmd "$HALTCL" "${tclargs[@]}"
+elif $INTERACTIVE; then
+    run_halcmd "$HALCMD" "${args[@]}" -kf
 fi
 
 # stop, unload all, wait for rtapi_app, remove the session
