@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 import math
 import os
+import re
 import subprocess
 import textwrap
 import uuid
@@ -42,6 +43,34 @@ def read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
     with open(path) as f:
         rows = list(csv.reader(f))
     return rows[0], rows[1:]
+
+
+def parse_vcd(text: str) -> dict[str, list[tuple[int, str]]]:
+    """Hierarchical name (below the top scope) -> [(time, value)] from VCD
+    text; "#end" -> [(last time stamp, "")]."""
+    names: dict[str, str] = {}
+    scope: list[str] = []
+    body = text.split("$enddefinitions")
+    for m in re.finditer(r"\$(scope \w+ (\S+)|upscope|var \w+ \d+ (\S+) (\S+)) ", body[0]):
+        if m.group(2):
+            scope.append(m.group(2))
+        elif m.group(1) == "upscope":
+            scope.pop()
+        else:
+            names[m.group(3)] = ".".join(scope[1:] + [m.group(4)])
+    changes: dict[str, list[tuple[int, str]]] = {n: [] for n in names.values()}
+    t = -1
+    for line in body[1].splitlines():
+        line = line.strip()
+        if line.startswith("#"):
+            t = int(line[1:])
+        elif line[:1] in ("b", "r"):
+            value, ident = line[1:].split()
+            changes[names[ident]].append((t, line[0] + value))
+        elif line[:1] in ("0", "1"):
+            changes[names[line[1:]]].append((t, line[0]))
+    changes["#end"] = [(t, "")]
+    return changes
 
 
 TWO_PI = 6.2831854  # siggen's constant (host/hal/components/siggen.comp)

@@ -7,13 +7,12 @@ to get it back as text): what a GTKWave user sees is what HAL held."""
 from __future__ import annotations
 
 import math
-import re
 import subprocess
 from pathlib import Path
 
 import pytest
 
-from hvutil import BUILT, halrun, read_csv
+from hvutil import BUILT, halrun, parse_vcd, read_csv
 
 VCD2FST, FST2VCD = "/usr/bin/vcd2fst", "/usr/bin/fst2vcd"
 pytestmark = pytest.mark.requires_build(*BUILT, VCD2FST, FST2VCD)
@@ -53,33 +52,6 @@ def expected(ms: int) -> dict[str, str]:
     out["fast.tmax"] = "-5" if ms == 2 else "0"
     out["siggen.0.reset"] = "1" if ms == 2 else "0"
     return out
-
-
-def parse_vcd(text: str) -> dict[str, list[tuple[int, str]]]:
-    """Hierarchical name -> [(time, value)] from VCD text."""
-    names: dict[str, str] = {}
-    scope: list[str] = []
-    body = text.split("$enddefinitions")
-    for m in re.finditer(r"\$(scope \w+ (\S+)|upscope|var \w+ \d+ (\S+) (\S+)) ", body[0]):
-        if m.group(2):
-            scope.append(m.group(2))
-        elif m.group(1) == "upscope":
-            scope.pop()
-        else:
-            names[m.group(3)] = ".".join(scope[1:] + [m.group(4)])
-    changes: dict[str, list[tuple[int, str]]] = {n: [] for n in names.values()}
-    t = -1
-    for line in body[1].splitlines():
-        line = line.strip()
-        if line.startswith("#"):
-            t = int(line[1:])
-        elif line[:1] in ("b", "r"):
-            value, ident = line[1:].split()
-            changes[names[ident]].append((t, line[0] + value))
-        elif line[:1] in ("0", "1"):
-            changes[names[line[1:]]].append((t, line[0]))
-    changes["#end"] = [(t, "")]
-    return changes
 
 
 def vcd_text(typ: str, value: str) -> str:

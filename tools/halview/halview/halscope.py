@@ -272,6 +272,8 @@ def main(argv: list[str] | None = None) -> int:
             from .vcdmerge import check_merge
 
             check_merge(a.merge, a.board_offset)
+            if not [p for p in a.out if p.lower().endswith(".vcd")]:
+                raise HalError("--merge writes the merged waveforms into a .vcd output: name one")
             if a.board_offset is None:
                 raise HalError("--merge needs --board-offset NS (or use --board SOCKET)")
         halapi.require_session()
