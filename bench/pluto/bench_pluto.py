@@ -37,7 +37,7 @@ def main() -> int:
             run(
                 sim="verilator",
                 toplevel=top,
-                sources=[hdl("common", "sync_ff.v")] + [hdl("pluto", f"{m}.v") for m in mods],
+                sources=[hdl("pluto", f"{m}.v") for m in mods],
                 test_module="bench_pluto_cocotb",
                 test_dir=Path(__file__).parent,
                 extra_env={"PLUTO_BENCH_OUT": str(out)},

@@ -22,9 +22,12 @@ module pluto_pwm (
 );
     wire [10:0] scrambled = {cnt[4], cnt[5], cnt[6], cnt[7], cnt[8], cnt[9], cnt[10], cnt[3:0]};
     wire [10:0] cmp = pdm ? scrambled : cnt;
-    wire active = word[10:0] > cmp;
+    // duty > cmp is the carry out of duty + ~cmp (a bare carry chain).
+    wire [10:0] sum_unused;
+    wire        active;
+    assign {active, sum_unused} = {1'b0, word[10:0]} + {1'b0, ~cmp};
 
-    always @(posedge clk) begin
+    always @(posedge clk or posedge rst) begin
         if (rst) begin
             up_q <= 1'b0;
             dn_q <= 1'b0;

@@ -21,8 +21,10 @@ module pluto_pwm_counter #(
 
     assign wrap = (cnt_q == LAST);
 
-    always @(posedge clk) begin
-        if (rst || wrap)
+    always @(posedge clk or posedge rst) begin
+        if (rst)
+            cnt_q <= {WIDTH{1'b0}};
+        else if (wrap)
             cnt_q <= {WIDTH{1'b0}};
         else
             cnt_q <= cnt_q + 1'b1;

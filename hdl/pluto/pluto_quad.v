@@ -41,21 +41,23 @@ module pluto_quad #(
     wire zf_d  = (integ_q == 3'd7) ? 1'b1 : (integ_q == 3'd0) ? 1'b0 : zf_q;
     wire index = zf_d & ~zf_q;
 
+    // The previous levels follow the inputs in reset too, so leaving reset
+    // is no count.
     always @(posedge clk) begin
+        a_q <= a;
+        b_q <= b;
+    end
+
+    always @(posedge clk or posedge rst) begin
         if (rst) begin
-            // Start from the levels on the pins: leaving reset is no count.
-            a_q     <= a;
-            b_q     <= b;
             count_q <= {WIDTH{1'b0}};
             latch_q <= {WIDTH{1'b0}};
             seen_q  <= 1'b0;
             integ_q <= 3'd0;
             zf_q    <= 1'b0;
         end else begin
-            a_q <= a;
-            b_q <= b;
             if (step)
-                count_q <= up ? count_q + 1'b1 : count_q - 1'b1;
+                count_q <= count_q + {{(WIDTH - 1){~up}}, 1'b1};  // +1 or -1
             if (z && integ_q != 3'd7)
                 integ_q <= integ_q + 3'd1;
             else if (!z && integ_q != 3'd0)

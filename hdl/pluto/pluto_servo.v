@@ -34,18 +34,15 @@ module pluto_servo #(
     output wire [18:0] io_out,
     output wire [18:0] io_oe
 );
-    // The counters wait until the pin synchronizers hold real pin levels.
-    reg  [2:0] rst_q;
-    always @(posedge clk) rst_q <= rst ? 3'b111 : {rst_q[1:0], 1'b0};
-    wire core_rst = rst | rst_q[2];
-
-    wire [19:0] in_s;
-    sync_ff #(.WIDTH(20), .STAGES(2), .RESET_VALUE({20{1'b1}})) u_sync (
-        .clk(clk), .rst(rst), .d(io_in), .q(in_s)
-    );
-    wire [3:0] qz_s = in_s[11:8];
-    wire [3:0] qb_s = in_s[15:12];
-    wire [3:0] qa_s = in_s[19:16];
+    // Encoder pins: one synchronizer stage (A and B then pass a second
+    // flip-flop inside pluto_quad, which compares the two).  No reset: the
+    // stage follows the pins during reset, so the counters start from the
+    // real pin levels.  IN0-7 are sampled by the read snapshot itself.
+    reg [11:0] enc_s;
+    always @(posedge clk) enc_s <= io_in[19:8];
+    wire [3:0] qz_s = enc_s[3:0];
+    wire [3:0] qb_s = enc_s[7:4];
+    wire [3:0] qa_s = enc_s[11:8];
 
     // ------------------------------------------------------------ host bus
     wire        wr_stb;
@@ -61,13 +58,13 @@ module pluto_servo #(
         .epp_d_i(epp_d_i), .epp_d_o(epp_d_o), .epp_d_oe(epp_d_oe),
         .epp_nwrite(epp_nwrite), .epp_ndatastr(epp_ndatastr),
         .epp_naddrstr(epp_naddrstr), .epp_nreset(epp_nreset), .epp_nwait(epp_nwait),
-        .wr_stb_q(wr_stb), .wr_addr_q(wr_addr), .wr_data_q(wr_data),
+        .wr_stb(wr_stb), .wr_addr(wr_addr), .wr_data(wr_data),
         .rd_stb(rd_stb), .rd_sel(rd_sel), .rd_data(rd_data), .rd_hit(rd_hit)
     );
 
     reg [63:0] pwm_q;  // PWM word n at [n*16 +: 16]
     reg [15:0] ctrl_q;
-    always @(posedge clk) begin
+    always @(posedge clk or posedge rst) begin
         if (rst) begin
             pwm_q  <= 64'd0;
             ctrl_q <= 16'd0;
@@ -107,7 +104,7 @@ module pluto_servo #(
                 assign z = qz_s[n] ^ zpol;
             end
             pluto_quad #(.WIDTH(14)) u_quad (
-                .clk(clk), .rst(core_rst), .a(a), .b(b), .z(z),
+                .clk(clk), .rst(rst), .a(a), .b(b), .z(z),
                 .clr_seen(rd_stb & (rd_sel == n)),
                 .count(count[n*14 +: 14]), .index_count(icount[n*14 +: 14]), .index_seen(seen[n])
             );
@@ -120,7 +117,7 @@ module pluto_servo #(
             3'd1: rd_data = {3'b000, seen[1], icount[27:14], count[27:14]};
             3'd2: rd_data = {3'b000, seen[2], icount[41:28], count[41:28]};
             3'd3: rd_data = {3'b000, seen[3], icount[55:42], count[55:42]};
-            default: rd_data = {12'd0, in_s};
+            default: rd_data = {12'd0, enc_s, io_in[7:0]};
         endcase
     end
 

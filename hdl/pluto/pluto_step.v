@@ -29,15 +29,15 @@ module pluto_step #(
     output wire [22:0] io_out,
     output wire [22:0] io_oe
 );
-    wire [15:0] in_s;
-    sync_ff #(.WIDTH(16), .STAGES(2), .RESET_VALUE({16{1'b1}})) u_sync (
-        .clk(clk), .rst(rst), .d(io_in), .q(in_s)
-    );
-
+    // IN0-15 are sampled by the read snapshot itself (no synchronizer).
     // Timebase: step tick every 64 clocks (1.6 us), watchdog tick every
     // 2048 clocks (51.2 us).
     reg [10:0] pre_q;
-    always @(posedge clk) pre_q <= rst ? 11'd0 : pre_q + 11'd1;
+    always @(posedge clk or posedge rst)
+        if (rst)
+            pre_q <= 11'd0;
+        else
+            pre_q <= pre_q + 11'd1;
     wire tick     = &pre_q[5:0];
     wire wdt_tick = &pre_q;
 
@@ -49,19 +49,19 @@ module pluto_step #(
     reg  [31:0] rd_data;
     wire        rd_hit = (rd_sel <= 3'd4);
 
-    pluto_epp #(.ACK_LEVEL(ACK_LEVEL)) u_epp (
+    pluto_epp #(.ACK_LEVEL(ACK_LEVEL), .SHARED_LO(1'b0)) u_epp (
         .clk(clk), .rst(rst),
         .epp_d_i(epp_d_i), .epp_d_o(epp_d_o), .epp_d_oe(epp_d_oe),
         .epp_nwrite(epp_nwrite), .epp_ndatastr(epp_ndatastr),
         .epp_naddrstr(epp_naddrstr), .epp_nreset(epp_nreset), .epp_nwait(epp_nwait),
-        .wr_stb_q(wr_stb), .wr_addr_q(wr_addr), .wr_data_q(wr_data),
+        .wr_stb(wr_stb), .wr_addr(wr_addr), .wr_data(wr_data),
         .rd_stb(rd_stb), .rd_sel(rd_sel), .rd_data(rd_data), .rd_hit(rd_hit)
     );
 
     reg [47:0] vel_q;  // velocity n at [n*12 +: 12]
     reg [13:0] out_q;
     reg [15:0] timing_q;
-    always @(posedge clk) begin
+    always @(posedge clk or posedge rst) begin
         if (rst) begin
             vel_q    <= 48'd0;
             out_q    <= 14'd0;
@@ -99,7 +99,7 @@ module pluto_step #(
             3'd1: rd_data = {11'd0, pos[41:21]};
             3'd2: rd_data = {11'd0, pos[62:42]};
             3'd3: rd_data = {11'd0, pos[83:63]};
-            default: rd_data = {16'd0, in_s};
+            default: rd_data = {16'd0, io_in};
         endcase
     end
 

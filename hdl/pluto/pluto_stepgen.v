@@ -35,66 +35,58 @@ module pluto_stepgen #(
     output reg            step_q,
     output reg            dir_q
 );
-    localparam [1:0] RUN = 2'd0, HOLD = 2'd1, SETUP = 2'd2;
-
+    // Phase, one bit per wait: hold_q (DIR hold before the change) and
+    // setup_q (DIR setup after it); neither = RUN.  One timer serves the
+    // STEP high time in RUN and the hold / setup time: HOLD is entered only
+    // with the step timer at 0, RUN only with the wait timer at 0.
     reg [W+F-1:0] pos_q;
     reg [T-1:0]   timer_q;
-    reg [T-1:0]   dtimer_q;
-    reg [1:0]     phase_q;
+    reg           hold_q;
+    reg           setup_q;
     reg           last_q;
 
     wire           vsign   = vel[F];
     wire [3:0]     taps    = pos_q[F+3:F];
-    wire           sel     = taps[tap];
-    wire           due     = sel ^ last_q;
+    wire           due     = taps[tap] ^ last_q;
     wire           turn    = vsign ^ dir_q;
-    wire           run     = (phase_q == RUN) | ((phase_q == SETUP) & (dtimer_q == {T{1'b0}}));
+    wire           idle    = (timer_q == {T{1'b0}});
+    wire           run     = ~hold_q & (~setup_q | idle);
+    wire           act     = ~hold_q & idle;  // run with the timer at 0
+    wire           ld_step = act & ~step_q & due;
+    wire           ld_dir  = idle & turn & (hold_q | ~due);
     wire [W+F-1:0] vel_ext = {{(W - 1){vel[F]}}, vel};
 
-    always @(posedge clk) begin
+    always @(posedge clk or posedge rst) begin
         if (rst) begin
-            pos_q    <= {(W + F){1'b0}};
-            timer_q  <= {T{1'b0}};
-            dtimer_q <= {T{1'b0}};
-            phase_q  <= RUN;
-            last_q   <= 1'b0;
-            step_q   <= 1'b0;
-            dir_q    <= 1'b0;
+            pos_q   <= {(W + F){1'b0}};
+            timer_q <= {T{1'b0}};
+            hold_q  <= 1'b0;
+            setup_q <= 1'b0;
+            last_q  <= 1'b0;
+            step_q  <= 1'b0;
+            dir_q   <= 1'b0;
         end else if (tick) begin
-            if (run) begin
-                phase_q <= RUN;
-                if (timer_q != {T{1'b0}}) begin
-                    timer_q <= timer_q - 1'b1;
-                end else if (step_q) begin
-                    step_q <= 1'b0;
-                    if (turn && !due) begin
-                        phase_q  <= HOLD;
-                        dtimer_q <= dirtime;
-                    end
-                end else if (due) begin
-                    step_q  <= 1'b1;
-                    timer_q <= steptime;
-                    last_q  <= sel;
-                end else if (turn) begin
-                    phase_q  <= HOLD;
-                    dtimer_q <= dirtime;
-                end
-                if (!turn)
-                    pos_q <= pos_q + vel_ext;
-            end else if (dtimer_q != {T{1'b0}}) begin
-                dtimer_q <= dtimer_q - 1'b1;
-            end else if (phase_q == HOLD) begin
-                if (turn) begin
-                    dir_q    <= vsign;
-                    phase_q  <= SETUP;
-                    dtimer_q <= dirtime;
-                end else begin
-                    phase_q <= RUN;
-                end
-            end else begin
-                // phase 3 is never entered; recover to RUN if it ever is.
-                phase_q <= RUN;
-            end
+            if (run & ~turn)
+                pos_q <= pos_q + vel_ext;
+            if (!idle)
+                timer_q <= timer_q - 1'b1;
+            else if (ld_step)
+                timer_q <= steptime;
+            else if (ld_dir)
+                timer_q <= dirtime;
+            // STEP ends when its time is up; a due step starts when the
+            // previous one has ended (at least one tick low).
+            if (act)
+                step_q <= ~step_q & due;
+            if (ld_step)
+                last_q <= ~last_q;  // = the selected position bit
+            // RUN -> HOLD when the direction must change and no step is due;
+            // HOLD -> SETUP (DIR changes) or back to RUN when the velocity
+            // turned back meanwhile; SETUP -> RUN when its time is up.
+            hold_q  <= hold_q ? ~idle : act & turn & ~due;
+            setup_q <= (setup_q & ~idle) | (hold_q & idle & turn);
+            if (hold_q & idle & turn)
+                dir_q <= vsign;
         end
     end
 

@@ -20,7 +20,7 @@ module pluto_wdt #(
     reg             en_q;
     wire            full = &cnt_q;
 
-    always @(posedge clk) begin
+    always @(posedge clk or posedge rst) begin
         if (rst) begin
             cnt_q <= {WIDTH{1'b0}};
             en_q  <= 1'b0;

@@ -18,8 +18,13 @@ CLK_NS = 25.0  # 40 MHz
 # --------------------------------------------------------------- EPP regs
 @dataclass
 class EppRegModel:
-    """Address register, 16-bit write assembly, 32-bit read buffer."""
+    """Address register, 16-bit write assembly, 32-bit read buffer.
 
+    ``shared_lo``: the write low byte is kept in byte 0 of the read buffer
+    (so a later stale read returns it there), as pluto_epp with
+    SHARED_LO = 1 does."""
+
+    shared_lo: bool = False
     addr: int = 0
     lo: int = 0
     buf: int = 0
@@ -37,6 +42,8 @@ class EppRegModel:
             self.writes.append((self.addr & 0xF, (value << 8) | self.lo))
         else:
             self.lo = value
+            if self.shared_lo:
+                self.buf = (self.buf & ~0xFF) | value
         self.addr = (self.addr + 1) & 0x1F
 
     def data_read(self, regs: dict[int, int]) -> int:

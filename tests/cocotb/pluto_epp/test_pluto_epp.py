@@ -50,8 +50,8 @@ class Core:
     async def _watch(self) -> None:
         while True:
             await RisingEdge(self.dut.clk)
-            if str(self.dut.wr_stb_q.value) == "1":
-                self.writes.append((int(self.dut.wr_addr_q.value), int(self.dut.wr_data_q.value)))
+            if str(self.dut.wr_stb.value) == "1":
+                self.writes.append((int(self.dut.wr_addr.value), int(self.dut.wr_data.value)))
             if str(self.dut.rd_stb.value) == "1":
                 self.snapshots.append(int(self.dut.rd_sel.value))
 
@@ -62,7 +62,7 @@ async def setup(dut: Any, **kw: Any) -> tuple[EppHost, Core, EppRegModel]:
     core = Core(dut)
     await start_clock_and_reset(dut)
     await ClockCycles(dut.clk, 4)
-    return host, core, EppRegModel()
+    return host, core, EppRegModel(shared_lo=bool(int(dut.SHARED_LO.value)))
 
 
 async def settle(dut: Any) -> None:
@@ -248,13 +248,13 @@ async def wrong_polarity_is_detected(dut: Any) -> None:
 
 
 @pytest.mark.parametrize("sim", SIMULATORS)
-@pytest.mark.parametrize("ack_level", [1, 0])
-def test_pluto_epp(sim: str, ack_level: int) -> None:
+@pytest.mark.parametrize("ack_level,shared_lo", [(1, 1), (0, 0)])
+def test_pluto_epp(sim: str, ack_level: int, shared_lo: int) -> None:
     run(
         sim=sim,
         toplevel="pluto_epp",
-        sources=[hdl("common", "sync_ff.v"), hdl("pluto", "pluto_epp.v")],
+        sources=[hdl("pluto", "pluto_epp.v")],
         test_module="test_pluto_epp",
         test_dir=Path(__file__).parent,
-        parameters={"ACK_LEVEL": ack_level},
+        parameters={"ACK_LEVEL": ack_level, "SHARED_LO": shared_lo},
     )

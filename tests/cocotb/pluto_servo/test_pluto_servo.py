@@ -21,7 +21,7 @@ from pluto_common.bench import epp_host, pins, start_clock_and_reset
 from pluto_common.driver import ServoDriver
 from pluto_common.models import PWM_PERIOD, servo_ctrl_word, servo_pwm_word
 
-SOURCES = [hdl("common", "sync_ff.v")] + [
+SOURCES = [
     hdl("pluto", f"{m}.v")
     for m in (
         "pluto_epp",

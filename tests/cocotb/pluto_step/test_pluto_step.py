@@ -21,7 +21,7 @@ from pluto_common.bench import epp_host, pins, start_clock_and_reset
 from pluto_common.driver import StepDriver
 from pluto_common.models import step_rate, step_timing_word
 
-SOURCES = [hdl("common", "sync_ff.v")] + [
+SOURCES = [
     hdl("pluto", f"{m}.v") for m in ("pluto_epp", "pluto_stepgen", "pluto_wdt", "pluto_step")
 ]
 OUTS = 23
