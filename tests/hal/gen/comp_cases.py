@@ -173,6 +173,7 @@ def rows_of(cols: list[list[float]]) -> list[Row]:
 def main() -> None:
     import comp_cases as cc
     import specs_simple  # noqa: F401  (registers the specs in comp_cases.SPECS)
+    import specs_compat  # noqa: F401  (the components LinuxCNC's sample configs use)
 
     names = sys.argv[1:] or sorted(cc.SPECS)
     for name in names:
