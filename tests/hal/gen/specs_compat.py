@@ -63,3 +63,82 @@ spec(
         note="index-enable cleared after index-delay-ms at a 0.1 ms period",
     )
 )
+
+
+def _gray_rows(rng: random.Random) -> list[Row]:
+    edge = [0, 1, 2, 3, 4, 7, 8, 0x7FFFFFFF, 0x80000000, 0xFFFFFFFE, 0xFFFFFFFF, 0xAAAAAAAA]
+    return [[float(v)] for v in edge + [rng.randrange(1 << 32) for _ in range(40)]]
+
+
+spec(
+    Spec(
+        "bin2gray",
+        [("in", "u")],
+        [("out", "u")],
+        _gray_rows,
+        setps=[{}, {}],
+        note="Gray code of edge values and random numbers",
+    )
+)
+
+
+def _corexy_rows(rng: random.Random) -> list[Row]:
+    sp = [0.0, -0.0, 1.0, -1.0, 1e-300, 1e300, -1e300, NAN, INF, -INF]
+    rows: list[Row] = []
+    for c in range(4):
+        for v in sp:
+            r = [round(rng.uniform(-100, 100), 6) for _ in range(4)]
+            r[c] = v
+            rows.append(r)
+    rows += [[round(rng.uniform(-500, 500), 6) for _ in range(4)] for _ in range(40)]
+    return rows
+
+
+spec(
+    Spec(
+        "corexy_by_hal",
+        [("j0-motor-pos-cmd", "f"), ("j1-motor-pos-cmd", "f"), ("alpha-fb", "f"), ("beta-fb", "f")],
+        [("alpha-cmd", "f"), ("beta-cmd", "f"), ("j0-motor-pos-fb", "f"), ("j1-motor-pos-fb", "f")],
+        _corexy_rows,
+        note="motor commands from joint commands and joint feedback from motor feedback",
+    )
+)
+
+_PP_OUT = ["01", "02", "03", "04", "05", "06", "07", "08", "09", "14", "16", "17"]
+_PP_IN = ["02", "03", "04", "05", "06", "07", "08", "09", "10", "11", "12", "13", "15"]
+
+
+def _parport_rows(rng: random.Random, n: int) -> list[Row]:
+    rows: list[Row] = [[0.0] * n, [1.0] * n]
+    rows += [[float(1 << i == 1 << k) for i in range(n)] for k in range(n)]
+    rows += [[float(rng.random() < 0.5) for _ in range(n)] for _ in range(20)]
+    return rows
+
+
+def _parport_spec(test: str, outs: list[str], ins: list[str], note: str) -> None:
+    """One test of some of the pins (the streamer and sampler take at most 21
+    values a row)."""
+    setps = {f"pin-{p}-out-invert": "1" for p in outs[::3]}
+    setps.update({"pin-02-out-reset": "1", "reset-time": "5000"})
+    spec(
+        Spec(
+            "sim_parport",
+            [(f"pin-{p}-out", "b") for p in outs] + [(f"pin-{p}-in-fake", "b") for p in ins],
+            [(f"pin-{p}-out-fake", "b") for p in outs]
+            + [(f"pin-{p}-in", "b") for p in ins]
+            + [(f"pin-{p}-in-not", "b") for p in ins],
+            lambda rng: _parport_rows(rng, len(outs) + len(ins)),
+            setps=[setps],
+            functs=["read", "write", "reset"],
+            prefix="parport.0",
+            singleton=True,
+            load="names=parport.0",
+            test=test,
+            note=note,
+        )
+    )
+
+
+_parport_spec("sim_parport-out", _PP_OUT, [], "out to out-fake, inverted by -invert (write)")
+_parport_spec("sim_parport-in", [], _PP_IN[:8], "in-fake to in and in-not (read), pins 2-9")
+_parport_spec("sim_parport-in2", [], _PP_IN[8:], "in-fake to in and in-not (read), pins 10-15")
