@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""Examples in the documentation (docs/*.md, README.md), found and run.
+"""Examples in the documentation (docs/*.md, README.md, examples/**/README.md),
+found and run.
 
 The rules (also in docs/engineering-standards.md, "Docs"):
 

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""Every example in docs/*.md and README.md runs (rules: tests/docs/docex.py).
+"""Every example in docs/*.md, README.md and examples/**/README.md runs
+(rules: tests/docs/docex.py).
 
 Examples that cannot work yet (a component not written yet) are listed as
 ``pending`` in tests/skips.txt with the reason: they still run, and the day
@@ -30,11 +31,17 @@ sys.path.insert(0, str(ROOT / "tests" / "common"))
 import docex  # noqa: E402
 import vboard  # noqa: E402
 
-PAGES = sorted((ROOT / "docs").glob("*.md")) + [ROOT / "README.md"]
+PAGES = (
+    sorted((ROOT / "docs").glob("*.md"))
+    + [ROOT / "README.md"]
+    + sorted((ROOT / "examples").glob("**/README.md"))
+)
 
 
 def _name(page: Path) -> str:
-    return "README.md" if page == ROOT / "README.md" else page.name
+    """docs/X.md -> X.md; other pages by their path (README.md,
+    examples/machines/README.md)."""
+    return page.name if page.parent == ROOT / "docs" else str(page.relative_to(ROOT))
 
 
 def _all_examples() -> list[docex.Example]:

@@ -32,19 +32,24 @@ def run(
     events: list[tuple[float, str]] = [],
     after: list[str] = [],
     moves: list[list[float]] | None = None,
-    machine_edit: tuple[str, str] | None = None,
+    machine_edit: tuple[str, str] | list[tuple[str, str]] | None = None,
+    before: list[str] = [],
 ) -> dict[str, Any]:
-    """The example's short run into out; machine_edit: (old, new) replaced
-    once in a copy of its machine file."""
+    """The example's short run into out; machine_edit: (old, new) (or a
+    list of them) replaced once in a copy of its machine file; before: HAL
+    lines after the example's HAL file, before the e-stop reset."""
     ex = example(name)
     if moves is not None:
         ex.moves["short"] = moves
+    ex.before = ex.before + before
     if machine_edit is not None:
         out.mkdir(parents=True, exist_ok=True)
         text = ex.machine.read_text()
-        assert machine_edit[0] in text
+        for old, new in machine_edit if isinstance(machine_edit, list) else [machine_edit]:
+            assert old in text, old
+            text = text.replace(old, new, 1)
         ex.machine = out / "machine.toml"
-        ex.machine.write_text(text.replace(*machine_edit, 1))
+        ex.machine.write_text(text)
     return hm2machine.run(ex, out, True, events, after)
 
 
