@@ -82,13 +82,17 @@ int pluto_module_load(const struct pluto_module_desc *d, const struct pluto_modu
         goto fail;
     }
     memset(b, 0, d->block_size);
-    epp_port_t *port = d->port_of(b);
+    epp_port_t *port = (epp_port_t *)((char *)b + d->port_offset);
     r = pluto_module_setup(port, d->modname, d->board, a->port, a->ioaddr, a->ioaddr_hi,
                            a->epp_wide,
                            a->firmware && *a->firmware ? a->firmware : d->default_firmware);
     if (r)
         goto fail;
     r = d->init(b, *comp_id);
+    if (!r)
+        r = hal_export_functf(d->read, b, 1, 0, *comp_id, "%s.read", d->board);
+    if (!r)
+        r = hal_export_functf(d->write, b, 1, 0, *comp_id, "%s.write", d->board);
     if (r) {
         rtapi_print_msg(RTAPI_MSG_ERR, "%s: exporting the HAL objects failed: %d\n", d->modname,
                         r);
@@ -107,9 +111,39 @@ fail:
 void pluto_module_unload(const struct pluto_module_desc *d, void **block, int *comp_id)
 {
     if (*block)
-        epp_port_close(d->port_of(*block));
+        epp_port_close((epp_port_t *)((char *)*block + d->port_offset));
     *block = NULL;
     if (*comp_id >= 0)
         hal_exit(*comp_id);
     *comp_id = -1;
+}
+
+int pluto_export_dio(int comp_id, const char *pfx, hal_bit_t **dout, hal_bit_t *dout_invert,
+                     int ndout, hal_bit_t **din, hal_bit_t **din_not, int ndin)
+{
+    int r = 0, i;
+    for (i = 0; i < ndout && !r; i++) {
+        r = hal_pin_bit_newf(HAL_IN, &dout[i], comp_id, "%s.dout.%02d", pfx, i);
+        if (!r)
+            r = hal_param_bit_newf(HAL_RW, &dout_invert[i], comp_id, "%s.dout.%02d-invert", pfx,
+                                   i);
+    }
+    for (i = 0; i < ndin && !r; i++) {
+        r = hal_pin_bit_newf(HAL_OUT, &din[i], comp_id, "%s.din.%02d", pfx, i);
+        if (!r)
+            r = hal_pin_bit_newf(HAL_OUT, &din_not[i], comp_id, "%s.din.%02d-not", pfx, i);
+    }
+    return r;
+}
+
+int pluto_export_diag(int comp_id, const char *pfx, hal_u32_t *communication_error,
+                      hal_s32_t *debug_0, hal_s32_t *debug_1)
+{
+    int r = hal_param_u32_newf(HAL_RW, communication_error, comp_id, "%s.communication-error",
+                               pfx);
+    if (!r)
+        r = hal_param_s32_newf(HAL_RW, debug_0, comp_id, "%s.debug-0", pfx);
+    if (!r)
+        r = hal_param_s32_newf(HAL_RW, debug_1, comp_id, "%s.debug-1", pfx);
+    return r;
 }
