@@ -100,4 +100,63 @@ void halstream_to_pin(hal_type_t type, void *pin, const halstream_value_t *v);
  * (threads stopping, module unloading). */
 int halstream_wait_peer(halstream_t *s, int want_space);
 
+/* What a sampler and a streamer channel have alike: NAME.N.enable (bit IN,
+ * TRUE at load), NAME.N.curr-depth (s32 OUT), the data pins NAME.N.pin.M
+ * and the FIFO.  The first member of each module's channel struct (which
+ * lives in HAL memory). */
+typedef struct {
+    hal_bit_t *enable;
+    hal_s32_t *curr_depth;
+    int npins;
+    hal_type_t types[HALSTREAM_MAX_PINS];
+    void *pins[HALSTREAM_MAX_PINS];
+    halstream_t fifo;
+} halstream_chan_t;
+
+/* What sets sampler and streamer apart; the load and unload sequence is
+ * halstream_module_load/unload. */
+typedef struct {
+    const char *name;      /* "sampler": component, HAL names, FIFO kind */
+    const char *who;       /* "SAMPLER": messages */
+    hal_pin_dir_t pin_dir; /* of the data pins NAME.N.pin.M */
+    size_t chan_size;      /* the module's channel struct */
+    /* export channel n's own pins (after enable and curr-depth) and set
+     * their start values.  0 or a HAL error. */
+    int (*export_pins)(void *chan, int comp_id, int n);
+    void (*funct)(void *chan, long period); /* exported as NAME.N */
+} halstream_module_desc_t;
+
+/* The module's state between load and unload. */
+typedef struct {
+    int comp_id;
+    halstream_chan_t *chans[HALSTREAM_MAX_CHAN];
+} halstream_module_t;
+
+/* rtapi_app_main: check cfg=/depth= (HALSTREAM_MAX_CHAN entries each),
+ * hal_init, per channel: the struct in HAL memory, its pins, the FIFO, the
+ * function; hal_ready.  0, or -errno after printing why with nothing left
+ * behind. */
+int halstream_module_load(halstream_module_t *m, const halstream_module_desc_t *d,
+                          char *const *cfg, const int *depth);
+/* rtapi_app_exit: remove the FIFOs, hal_exit. */
+void halstream_module_unload(halstream_module_t *m);
+
+/* The module parameters (depth=, cfg=, as LinuxCNC 2.9's) and the entry
+ * points of a sampler/streamer module described by DESC, in the module's
+ * own file (rtapi_app finds them there). */
+#define HALSTREAM_MODULE(DESC)                                                                   \
+    static int depth[HALSTREAM_MAX_CHAN];                                                       \
+    RTAPI_MP_ARRAY_INT(depth, HALSTREAM_MAX_CHAN, "fifo depth (samples) of each channel");      \
+    static char *cfg[HALSTREAM_MAX_CHAN];                                                       \
+    RTAPI_MP_ARRAY_STRING(cfg, HALSTREAM_MAX_CHAN, "config string of each channel (b f s u)");  \
+    static halstream_module_t halstream_module_;                                                \
+    int rtapi_app_main(void)                                                                    \
+    {                                                                                           \
+        return halstream_module_load(&halstream_module_, &(DESC), cfg, depth);                  \
+    }                                                                                           \
+    void rtapi_app_exit(void)                                                                   \
+    {                                                                                           \
+        halstream_module_unload(&halstream_module_);                                            \
+    }
+
 #endif /* HALSTREAM_H */

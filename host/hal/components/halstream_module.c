@@ -2,8 +2,9 @@
 /*
  * halstream_module.c - what the realtime ends of the FIFOs (sampler and
  * streamer) share beyond the ring itself: checking their cfg=/depth= module
- * parameters, moving values between HAL pins and FIFO records, and waiting
- * for the userspace peer under the simulated clock.  See halstream.h.
+ * parameters, creating and removing their channels, moving values between
+ * HAL pins and FIFO records, and waiting for the userspace peer under the
+ * simulated clock.  See halstream.h.
  */
 #include <errno.h>
 #include <string.h>
@@ -124,4 +125,86 @@ int halstream_wait_peer(halstream_t *s, int want_space)
         if (rtapi_sim_yield())
             return 0;
     }
+}
+
+static int init_channel(halstream_module_t *m, const halstream_module_desc_t *d, int n,
+                        int depth, const hal_type_t *types, int npins)
+{
+    char err[256];
+    halstream_chan_t *c = hal_malloc((long)d->chan_size);
+    if (c == NULL) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: ERROR: out of HAL memory for channel %d\n", d->who,
+                        n);
+        return -ENOMEM;
+    }
+    memset(c, 0, d->chan_size);
+    int r;
+    if ((r = hal_pin_bit_newf(HAL_IN, &c->enable, m->comp_id, "%s.%d.enable", d->name, n)) < 0 ||
+        (r = hal_pin_s32_newf(HAL_OUT, &c->curr_depth, m->comp_id, "%s.%d.curr-depth", d->name,
+                              n)) < 0)
+        return r;
+    *c->enable = 1;
+    *c->curr_depth = 0;
+    if ((r = d->export_pins(c, m->comp_id, n)) < 0)
+        return r;
+    c->npins = npins;
+    for (int i = 0; i < npins; i++) {
+        c->types[i] = types[i];
+        r = hal_pin_newf(types[i], d->pin_dir, &c->pins[i], m->comp_id, "%s.%d.pin.%d", d->name,
+                         n, i);
+        if (r < 0)
+            return r;
+    }
+    r = halstream_create(&c->fifo, d->name, n, depth, npins, types, err, sizeof(err));
+    if (r < 0) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: ERROR: channel %d: %s\n", d->who, n, err);
+        return r;
+    }
+    m->chans[n] = c;
+    return hal_export_functf(d->funct, c, 1, 0, m->comp_id, "%s.%d", d->name, n);
+}
+
+static void destroy_channels(halstream_module_t *m)
+{
+    for (int i = 0; i < HALSTREAM_MAX_CHAN; i++) {
+        if (m->chans[i] != NULL)
+            halstream_destroy(&m->chans[i]->fifo);
+        m->chans[i] = NULL;
+    }
+}
+
+int halstream_module_load(halstream_module_t *m, const halstream_module_desc_t *d,
+                          char *const *cfg, const int *depth)
+{
+    hal_type_t types[HALSTREAM_MAX_CHAN][HALSTREAM_MAX_PINS];
+    int npins[HALSTREAM_MAX_CHAN];
+
+    /* Validate everything before creating anything. */
+    int nchan = halstream_check_params(d->who, cfg, depth, HALSTREAM_MAX_CHAN, types, npins);
+    if (nchan < 0)
+        return nchan;
+    m->comp_id = hal_init(d->name);
+    if (m->comp_id < 0) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: ERROR: hal_init() failed\n", d->who);
+        return m->comp_id;
+    }
+    for (int n = 0; n < nchan; n++) {
+        int r = init_channel(m, d, n, depth[n], types[n], npins[n]);
+        if (r < 0) {
+            rtapi_print_msg(RTAPI_MSG_ERR,
+                            "%s: ERROR: channel %d failed (%d), nothing of %s was kept\n",
+                            d->who, n, r, d->name);
+            destroy_channels(m);
+            hal_exit(m->comp_id);
+            return r;
+        }
+    }
+    hal_ready(m->comp_id);
+    return 0;
+}
+
+void halstream_module_unload(halstream_module_t *m)
+{
+    destroy_channels(m);
+    hal_exit(m->comp_id);
 }

@@ -30,144 +30,60 @@
  * strings.  See docs/sampler.md.
  */
 #include <errno.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include "hal.h"
 #include "halstream.h"
 #include "rtapi.h"
 
-#define MAX_CHAN HALSTREAM_MAX_CHAN
-
-static int depth[MAX_CHAN];
-RTAPI_MP_ARRAY_INT(depth, MAX_CHAN, "fifo depth (samples) of each channel");
-static char *cfg[MAX_CHAN];
-RTAPI_MP_ARRAY_STRING(cfg, MAX_CHAN, "config string of each channel (b f s u)");
-
 typedef struct {
-    hal_bit_t *enable;
-    hal_s32_t *curr_depth;
+    halstream_chan_t c; /* enable, curr-depth, the data pins (IN), the FIFO */
     hal_bit_t *full;
     hal_s32_t *overruns;
     hal_s32_t *sample_num;
-    int npins;
-    hal_type_t types[HALSTREAM_MAX_PINS];
-    void *pins[HALSTREAM_MAX_PINS];
-    halstream_t fifo;
 } sampler_t;
-
-/* Module-level: the component id and the channel table that
- * rtapi_app_exit needs (the channels themselves live in HAL memory). */
-static int comp_id;
-static sampler_t *chans[MAX_CHAN];
-static int nchan;
 
 static void sample(void *arg, long period)
 {
     sampler_t *s = arg;
     halstream_value_t vals[HALSTREAM_MAX_PINS];
     (void)period;
-    if (!*s->enable)
+    if (!*s->c.enable)
         return;
-    for (int i = 0; i < s->npins; i++)
-        halstream_from_pin(s->types[i], s->pins[i], &vals[i]);
+    for (int i = 0; i < s->c.npins; i++)
+        halstream_from_pin(s->c.types[i], s->c.pins[i], &vals[i]);
     rtapi_u32 num = (rtapi_u32)*s->sample_num;
     *s->sample_num = (rtapi_s32)(num + 1u);
-    int r = halstream_write(&s->fifo, vals, num);
+    int r = halstream_write(&s->c.fifo, vals, num);
     /* simulated clock: wait for the reader while it is there */
-    if (r == -ENOSPC && rtapi_is_simclock() && halstream_wait_peer(&s->fifo, 1))
-        r = halstream_write(&s->fifo, vals, num);
+    if (r == -ENOSPC && rtapi_is_simclock() && halstream_wait_peer(&s->c.fifo, 1))
+        r = halstream_write(&s->c.fifo, vals, num);
     if (r != 0)
         (*s->overruns)++;
-    int fill = halstream_fill(&s->fifo);
-    *s->curr_depth = fill;
-    *s->full = fill >= halstream_capacity(&s->fifo);
+    int fill = halstream_fill(&s->c.fifo);
+    *s->c.curr_depth = fill;
+    *s->full = fill >= halstream_capacity(&s->c.fifo);
 }
 
-static int init_channel(int n, const hal_type_t *types, int npins)
+static int export_pins(void *chan, int comp_id, int n)
 {
-    char err[256];
-    sampler_t *s = hal_malloc(sizeof(*s));
-    if (s == NULL) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "SAMPLER: ERROR: out of HAL memory for channel %d\n", n);
-        return -ENOMEM;
-    }
-    memset(s, 0, sizeof(*s));
+    sampler_t *s = chan;
     int r;
-    if ((r = hal_pin_bit_newf(HAL_IN, &s->enable, comp_id, "sampler.%d.enable", n)) < 0 ||
-        (r = hal_pin_s32_newf(HAL_OUT, &s->curr_depth, comp_id, "sampler.%d.curr-depth", n)) < 0 ||
-        (r = hal_pin_bit_newf(HAL_OUT, &s->full, comp_id, "sampler.%d.full", n)) < 0 ||
+    if ((r = hal_pin_bit_newf(HAL_OUT, &s->full, comp_id, "sampler.%d.full", n)) < 0 ||
         (r = hal_pin_s32_newf(HAL_IO, &s->overruns, comp_id, "sampler.%d.overruns", n)) < 0 ||
         (r = hal_pin_s32_newf(HAL_IO, &s->sample_num, comp_id, "sampler.%d.sample-num", n)) < 0)
         return r;
-    *s->enable = 1;
-    *s->curr_depth = 0;
     *s->full = 0;
     *s->overruns = 0;
     *s->sample_num = 0;
-    s->npins = npins;
-    for (int i = 0; i < npins; i++) {
-        s->types[i] = types[i];
-        r = hal_pin_newf(types[i], HAL_IN, &s->pins[i], comp_id, "sampler.%d.pin.%d", n, i);
-        if (r < 0)
-            return r;
-    }
-    r = halstream_create(&s->fifo, "sampler", n, depth[n], npins, types, err, sizeof(err));
-    if (r < 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "SAMPLER: ERROR: channel %d: %s\n", n, err);
-        return r;
-    }
-    chans[n] = s;
-    r = hal_export_functf(sample, s, 1, 0, comp_id, "sampler.%d", n);
-    if (r < 0)
-        return r;
     return 0;
 }
 
-static void destroy_channels(void)
-{
-    for (int i = 0; i < MAX_CHAN; i++) {
-        if (chans[i] != NULL)
-            halstream_destroy(&chans[i]->fifo);
-        chans[i] = NULL;
-    }
-}
-
-int rtapi_app_main(void)
-{
-    hal_type_t types[MAX_CHAN][HALSTREAM_MAX_PINS];
-    int npins[MAX_CHAN];
-
-    /* Validate everything before creating anything. */
-    nchan = halstream_check_params("SAMPLER", cfg, depth, MAX_CHAN, types, npins);
-    if (nchan < 0)
-        return nchan;
-    comp_id = hal_init("sampler");
-    if (comp_id < 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "SAMPLER: ERROR: hal_init() failed\n");
-        return comp_id;
-    }
-    for (int n = 0; n < nchan; n++) {
-        int r = init_channel(n, types[n], npins[n]);
-        if (r < 0) {
-            rtapi_print_msg(RTAPI_MSG_ERR,
-                            "SAMPLER: ERROR: channel %d failed (%d), nothing of sampler was "
-                            "kept\n",
-                            n, r);
-            destroy_channels();
-            hal_exit(comp_id);
-            return r;
-        }
-    }
-    hal_ready(comp_id);
-    return 0;
-}
-
-void rtapi_app_exit(void)
-{
-    destroy_channels();
-    hal_exit(comp_id);
-}
+static const halstream_module_desc_t desc = {
+    .name = "sampler", .who = "SAMPLER",
+    .pin_dir = HAL_IN, .chan_size = sizeof(sampler_t),
+    .export_pins = export_pins, .funct = sample,
+};
+HALSTREAM_MODULE(desc)
 
 MODULE_LICENSE("GPL");
 MODULE_DESCRIPTION("Realtime HAL sampler: pins to a FIFO read by halsampler");
