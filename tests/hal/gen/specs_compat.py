@@ -142,3 +142,54 @@ def _parport_spec(test: str, outs: list[str], ins: list[str], note: str) -> None
 _parport_spec("sim_parport-out", _PP_OUT, [], "out to out-fake, inverted by -invert (write)")
 _parport_spec("sim_parport-in", [], _PP_IN[:8], "in-fake to in and in-not (read), pins 2-9")
 _parport_spec("sim_parport-in2", [], _PP_IN[8:], "in-fake to in and in-not (read), pins 10-15")
+
+
+def _orient_rows(rng: random.Random) -> list[Row]:
+    """Columns enable, mode, angle, position, tolerance: rising edges in each
+    mode at positions around the target (ties at half a turn, negative
+    positions, big and negative angles, NaN and infinities), settling with
+    poserr in and out of tolerance, then random segments."""
+    rows: list[Row] = []
+
+    def seg(en: int, mode: int, ang: float, pos: list[float], tol: float = 0.5) -> None:
+        rows.extend([float(en), float(mode), ang, p, tol] for p in pos)
+
+    for mode, ang, pos in [
+        (0, 90, 0.1), (0, 90, 2.7), (0, 300, 2.1), (1, 90, 2.1), (1, 90, 2.7),
+        (2, 90, 2.1), (2, 90, 2.7), (0, 90, -2.7), (1, 90, -2.7), (2, 90, -2.7),
+        (3, 90, 2.7), (-1, 90, 2.0), (0, 90, 2.25), (1, 90, 2.25), (2, 90, 2.25),
+        (0, 90, 2.75), (0, 180, 2.0), (0, -90, 2.0), (0, 720, 2.0), (1, 720, 2.0),
+        (1, -450, 2.0), (2, 720, 2.0), (2, -450, 2.0), (0, 3600, 2.0), (0, -3600, 2.0),
+        (1, 360, 2.0), (2, 360, 2.0), (0, 90, INF), (0, 90, -INF), (0, INF, 2.0),
+        (0, NAN, 2.0), (0, 90, NAN), (1, 100, 1e16), (0, 10, -0.0),
+    ]:  # fmt: skip
+        seg(0, mode, ang, [pos])
+        seg(1, mode, ang, [pos, pos + 0.01])
+    seg(1, 0, 180, [2.0])  # the angle is read at the rising edge only
+    seg(0, 0, 90, [0.2])
+    seg(1, 0, 90, [0.2] * 3 + [0.25] * 103 + [0.26] * 3 + [0.25] * 3)  # settle, latch
+    seg(0, 0, 90, [0.25] * 2)
+    seg(1, 0, 90, [0.25] * 50 + [0.3] * 10 + [0.25] * 55)  # time out of tolerance
+    seg(0, 0, 90, [0.2])
+    seg(1, 0, 90, [0.2] * 105)  # poserr -18: never within 0.5
+    seg(0, 0, 90, [0.2])
+    seg(1, 0, 90, [0.25 + 0.5 / 360] * 103)  # just below the tolerance
+    seg(0, 0, 90, [0.2])
+    seg(1, 0, 90, [0.25 - 0.4 / 360] * 103, 0.4)  # just beyond it
+    for _ in range(12):
+        mode, ang = rng.choice([0, 0, 1, 2]), round(rng.uniform(-400, 400), 3)
+        p0 = round(rng.uniform(-5, 5), 4)
+        seg(0, mode, ang, [p0])
+        seg(1, mode, ang, [round(p0 + rng.uniform(-0.6, 0.6), 4) for _ in range(4)], 20.0)
+    return rows
+
+
+spec(
+    Spec(
+        "orient",
+        [("enable", "b"), ("mode", "s"), ("angle", "f"), ("position", "f"), ("tolerance", "f")],
+        [("command", "f"), ("poserr", "f"), ("is-oriented", "b")],
+        _orient_rows,
+        note="command at enable's rising edge by mode, poserr, is-oriented after 100 periods",
+    )
+)
