@@ -13,6 +13,7 @@
 
 #include "hal.h"
 #include "hm2/hostmot2.h"
+#include "hm2_board_module.h"
 #include "hm2_7i43_llio.h"
 #include "rtapi.h"
 
@@ -44,8 +45,8 @@ struct h7_slot {
     int port_open;
     int registered;
 };
-static struct h7_slot *slots;
-static int comp_id = -1;
+/* The module's boards (rtapi_app_exit finds them again here). */
+static struct hm2_board_module mod = {NULL, -1};
 
 static void h7_log(int level, const char *fmt, ...)
 {
@@ -69,20 +70,15 @@ static long long h7_now(void)
     return rtapi_get_time();
 }
 
-static void cleanup(void)
+static void release_one(void *slots, int i)
 {
-    if (!slots)
-        return;
-    for (int i = 0; i < NB; i++) {
-        if (slots[i].registered) {
-            rtapi_print("%s: releasing board\n", slots[i].board.llio.name);
-            hm2_unregister(&slots[i].board.llio);
-        }
-        if (slots[i].port_open)
-            epp_port_close(&slots[i].port);
+    struct h7_slot *s = &((struct h7_slot *)slots)[i];
+    if (s->registered) {
+        rtapi_print("%s: releasing board\n", s->board.llio.name);
+        hm2_unregister(&s->board.llio);
     }
-    free(slots);
-    slots = NULL;
+    if (s->port_open)
+        epp_port_close(&s->port);
 }
 
 static int board_wanted(int i)
@@ -90,9 +86,9 @@ static int board_wanted(int i)
     return (port[i] && port[i][0]) || ioaddr[i] >= 0;
 }
 
-static int setup_one(int i)
+static int setup_one(void *slots, int i, int comp_id)
 {
-    struct h7_slot *s = &slots[i];
+    struct h7_slot *s = &((struct h7_slot *)slots)[i];
     char err[640];
     int r = epp_port_open(&s->port, port[i], ioaddr[i], ioaddr_hi[i], epp_wide[i], err,
                           sizeof(err));
@@ -123,46 +119,20 @@ static int setup_one(int i)
     return 0;
 }
 
+static const struct hm2_board_module_desc desc = {
+    .name = "hm2_7i43",
+    .none_given = "no boards given (ioaddr[0] < 0 and no port)",
+    .max_boards = NB, .slot_size = sizeof(struct h7_slot),
+    .wanted = board_wanted, .setup = setup_one, .release = release_one,
+};
+
 int rtapi_app_main(void)
 {
-    int r = 0, n = 0;
     rtapi_print("hm2_7i43: loading HostMot2 Mesa 7i43 driver version " HM2_7I43_VERSION "\n");
-    comp_id = hal_init("hm2_7i43");
-    if (comp_id < 0)
-        return comp_id;
-    slots = calloc(NB, sizeof(*slots));
-    if (!slots) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_7i43: out of memory\n");
-        r = -ENOMEM;
-        goto fail;
-    }
-    for (int i = 0; i < NB; i++) {
-        if (!board_wanted(i))
-            break;
-        r = setup_one(i);
-        if (r)
-            goto fail;
-        n++;
-    }
-    if (n == 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_7i43: no boards given (ioaddr[0] < 0 and no port)\n");
-        r = -EINVAL;
-        goto fail;
-    }
-    hal_ready(comp_id);
-    return 0;
-fail:
-    cleanup();
-    hal_exit(comp_id);
-    comp_id = -1;
-    return r;
+    return hm2_board_module_load(&mod, &desc);
 }
 
 void rtapi_app_exit(void)
 {
-    cleanup();
-    if (comp_id >= 0)
-        hal_exit(comp_id);
-    comp_id = -1;
-    rtapi_print("hm2_7i43: driver unloaded\n");
+    hm2_board_module_unload(&mod, &desc);
 }

@@ -12,6 +12,7 @@
 
 #include "hal.h"
 #include "hm2/hostmot2.h"
+#include "hm2_board_module.h"
 #include "hm2_pci_core.h"
 #include "rtapi.h"
 
@@ -35,18 +36,6 @@ struct hp_slot {
 static struct hp_slot *slots;
 static int num_boards;
 static int comp_id = -1;
-
-static void hp_log(void *ctx, int level, const char *line)
-{
-    (void)ctx;
-    switch (level) {
-    case HM2_PRINT: rtapi_print("%s\n", line); break;
-    case HM2_ERR: rtapi_print_msg(RTAPI_MSG_ERR, "%s\n", line); break;
-    case HM2_WARN: rtapi_print_msg(RTAPI_MSG_WARN, "%s\n", line); break;
-    case HM2_INFO: rtapi_print_msg(RTAPI_MSG_INFO, "%s\n", line); break;
-    default: rtapi_print_msg(RTAPI_MSG_DBG, "%s\n", line); break;
-    }
-}
 
 static void release(struct hp_slot *s)
 {
@@ -94,7 +83,7 @@ static int probe_one(const struct pci_sysfs_dev *dev, const struct hm2_pci_id *i
     for (int i = 0; i < num_boards; i++)
         done[i] = slots[i].board.id;
     int index = hm2_pci_type_index(done, num_boards, id);
-    int r = hm2_pci_setup(&s->board, dev, id, index, NULL, NULL, hp_log, NULL);
+    int r = hm2_pci_setup(&s->board, dev, id, index, NULL, NULL, hm2_board_rtapi_log, NULL);
     if (r)
         goto fail;
     s->board.llio.comp_id = comp_id;

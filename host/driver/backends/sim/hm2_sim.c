@@ -18,6 +18,7 @@
 
 #include "hal.h"
 #include "hm2/hostmot2.h"
+#include "hm2_board_module.h"
 #include "hm2_sim_llio.h"
 #include "rtapi.h"
 
@@ -56,20 +57,7 @@ struct hs_slot {
 };
 
 /* The module's boards (rtapi_app_exit finds them again here). */
-static struct hs_slot *slots;
-static int comp_id = -1;
-
-static void hs_log(void *ctx, int level, const char *line)
-{
-    (void)ctx;
-    switch (level) {
-    case HM2_PRINT: rtapi_print("%s\n", line); break;
-    case HM2_ERR: rtapi_print_msg(RTAPI_MSG_ERR, "%s\n", line); break;
-    case HM2_WARN: rtapi_print_msg(RTAPI_MSG_WARN, "%s\n", line); break;
-    case HM2_INFO: rtapi_print_msg(RTAPI_MSG_INFO, "%s\n", line); break;
-    default: rtapi_print_msg(RTAPI_MSG_DBG, "%s\n", line); break;
-    }
-}
+static struct hm2_board_module mod = {NULL, -1};
 
 static int64_t hs_now(void)
 {
@@ -81,25 +69,24 @@ static int64_t hs_no_time(void)
     return 0;
 }
 
-static void cleanup(void)
+static void release_one(void *slots, int i)
 {
-    if (!slots)
-        return;
-    for (int i = 0; i < NB; i++) {
-        struct hs_slot *s = &slots[i];
-        if (s->registered) {
-            rtapi_print("%s: dropping virtual board at %s\n", s->board.llio.name, sockets[i]);
-            hm2_unregister(&s->board.llio);
-        }
-        if (s->set_up)
-            hm2_sim_teardown(&s->board);
+    struct hs_slot *s = &((struct hs_slot *)slots)[i];
+    if (s->registered) {
+        rtapi_print("%s: dropping virtual board at %s\n", s->board.llio.name, sockets[i]);
+        hm2_unregister(&s->board.llio);
     }
-    free(slots);
-    slots = NULL;
+    if (s->set_up)
+        hm2_sim_teardown(&s->board);
+}
+
+static int board_wanted(int i)
+{
+    return sockets[i] && sockets[i][0];
 }
 
 /* hm2_<board>.<n>: n counts the boards of the same type, as hm2_pci does */
-static int type_index(int i, const char *name)
+static int type_index(const struct hs_slot *slots, int i, const char *name)
 {
     int n = 0;
     for (int j = 0; j < i; j++)
@@ -108,13 +95,13 @@ static int type_index(int i, const char *name)
     return n;
 }
 
-static int setup_one(int i)
+static int setup_one(void *slots, int i, int comp_id)
 {
-    struct hs_slot *s = &slots[i];
+    struct hs_slot *s = &((struct hs_slot *)slots)[i];
     /* the index depends on the board type, which only HELLO tells: set up
      * with index 0, then rename */
     int r = hm2_sim_setup(&s->board, sockets[i], board[i], 0, host_time ? hs_now : hs_no_time,
-                          hs_log, NULL);
+                          hm2_board_rtapi_log, NULL);
     if (r)
         return r;
     s->set_up = 1;
@@ -124,7 +111,8 @@ static int setup_one(int i)
     }
     s->board.vbc.spin_us = spin_us;
     s->board.async_writes = async_writes != 0;
-    hm2_board_fill_llio(s->board.info, type_index(i, s->board.hello.board), &s->board.llio);
+    int index = type_index(slots, i, s->board.hello.board);
+    hm2_board_fill_llio(s->board.info, index, &s->board.llio);
     s->board.llio.comp_id = comp_id;
     r = hm2_register(&s->board.llio, config[i]);
     if (r) {
@@ -138,47 +126,24 @@ static int setup_one(int i)
     return 0;
 }
 
+static const struct hm2_board_module_desc desc = {
+    .name = "hm2_sim",
+    .none_given = "no board given (socket=PATH[,PATH...])",
+    .max_boards = NB, .slot_size = sizeof(struct hs_slot),
+    .wanted = board_wanted, .setup = setup_one, .release = release_one,
+};
+
 int rtapi_app_main(void)
 {
-    int r = 0, n = 0;
     rtapi_print("hm2_sim: loading HostMot2 virtual board driver\n");
     if (spin_us < 0 || spin_us > 10000) {
         rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: spin_us=%d out of range (0..10000)\n", spin_us);
         return -EINVAL;
     }
-    comp_id = hal_init("hm2_sim");
-    if (comp_id < 0)
-        return comp_id;
-    slots = calloc(NB, sizeof(*slots));
-    if (!slots) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: out of memory for %d board slots\n", NB);
-        r = -ENOMEM;
-        goto fail;
-    }
-    for (int i = 0; i < NB && sockets[i] && sockets[i][0]; i++) {
-        if ((r = setup_one(i)))
-            goto fail;
-        n++;
-    }
-    if (n == 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: no board given (socket=PATH[,PATH...])\n");
-        r = -EINVAL;
-        goto fail;
-    }
-    hal_ready(comp_id);
-    return 0;
-fail:
-    cleanup();
-    hal_exit(comp_id);
-    comp_id = -1;
-    return r;
+    return hm2_board_module_load(&mod, &desc);
 }
 
 void rtapi_app_exit(void)
 {
-    cleanup();
-    if (comp_id >= 0)
-        hal_exit(comp_id);
-    comp_id = -1;
-    rtapi_print("hm2_sim: driver unloaded\n");
+    hm2_board_module_unload(&mod, &desc);
 }
