@@ -94,9 +94,7 @@ def bindir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def build(name: str, out: Path) -> Path:
     compiler, flags, sources = TARGETS[name]
     cc = shutil.which(compiler)
-    assert (
-        cc is not None
-    ), f"{compiler} is required for the fuzz tests (apt-get install clang)"
+    assert cc is not None, f"{compiler} is required for the fuzz tests (apt-get install clang)"
     exe = out / f"fuzz_{name}"
     cmd = [
         cc,
@@ -111,9 +109,7 @@ def build(name: str, out: Path) -> Path:
         str(exe),
     ]
     r = subprocess.run(cmd, capture_output=True, text=True)
-    assert (
-        r.returncode == 0
-    ), f"fuzz target {name} did not build:\n{' '.join(cmd)}\n{r.stderr}"
+    assert r.returncode == 0, f"fuzz target {name} did not build:\n{' '.join(cmd)}\n{r.stderr}"
     return exe
 
 
@@ -142,6 +138,4 @@ def test_fuzz_target(name: str, bindir: Path, tmp_path: Path) -> None:
     assert r.returncode == 0, f"{name}: libFuzzer found a problem:\n{r.stderr[-6000:]}"
     assert "Done " in r.stderr, r.stderr[-2000:]
     runs = int(r.stderr.rsplit("Done ", 1)[1].split()[0])
-    assert runs > len(
-        list(seeds.iterdir())
-    ), f"{name}: only {runs} runs:\n{r.stderr[-2000:]}"
+    assert runs > len(list(seeds.iterdir())), f"{name}: only {runs} runs:\n{r.stderr[-2000:]}"
