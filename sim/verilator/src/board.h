@@ -81,6 +81,24 @@ class Board {
     // --firmware: the board starts configured, no image involved).
     virtual int load(const std::string &firmware, std::string &err) = 0;
 
+    // ---- configuration flash (vboard --flash) -------------------------------
+    // Give the board its SPI configuration flash: `path` a file kept in
+    // step with the flash ("" = memory only), `part` its type ("" = the
+    // board's own), busy times divided by `speedup`.  A new (erased) flash
+    // is factory-programmed with `firmware` (boot block, fallback and user
+    // image) when that is not empty; then the board configures itself from
+    // the flash as at power-up.
+    virtual int attach_flash(const std::string &path, const std::string &part, uint32_t speedup,
+                             const std::string &firmware, std::string &err)
+    {
+        (void)path, (void)part, (void)speedup, (void)firmware;
+        err = "board " + name() + " has no configuration flash";
+        return -ENOTSUP;
+    }
+    // 1 when the board configures itself from a flash (it then has one
+    // from the start, in memory, unless --flash names a file).
+    virtual bool flash_configured() const { return false; }
+
     // ---- hm2 local bus (VB_READ / VB_WRITE) --------------------------------
     // Address/size checks (multiple of 4, inside the 64 KiB window) are done
     // by the server before these are called.  `data` of lb_write holds every

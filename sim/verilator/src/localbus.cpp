@@ -123,6 +123,27 @@ int LocalBusBoard::load(const std::string &firmware, std::string &err)
     return 0;
 }
 
+int LocalBusBoard::match_image(const uint8_t *p, size_t n, const LbEntry *&e,
+                               std::string &err) const
+{
+    std::vector<BuiltFw> built;
+    std::vector<const LbEntry *> entries;
+    for (size_t i = 0; i < kNumLbModels; i++)
+        if (board_ == kLbModels[i].info->board) {
+            built.push_back({kLbModels[i].info->firmware, kLbModels[i].info->idrom_crc});
+            entries.push_back(&kLbModels[i]);
+        }
+    FwImage img;
+    int rc = parse_fw_image(p, n, img, err);
+    if (rc < 0)
+        return rc;
+    rc = match_fw_image(p, n, board_, built, "IDROM CRC", err);
+    if (rc < 0)
+        return img.board != board_ ? -ENODEV : rc;
+    e = entries[static_cast<size_t>(rc)];
+    return 0;
+}
+
 int LocalBusBoard::config(uint32_t op, const uint8_t *bits, size_t len, vb_config_status &st,
                           std::string &err)
 {
@@ -137,21 +158,14 @@ int LocalBusBoard::config(uint32_t op, const uint8_t *bits, size_t len, vb_confi
         // not applied (the protocol's error rule), so a configured board
         // keeps its firmware and a blank one stays blank.  (The drivers
         // reset the board before programming, as on real hardware.)
-        std::vector<BuiltFw> built;
-        std::vector<const LbEntry *> entries;
-        for (size_t i = 0; i < kNumLbModels; i++)
-            if (board_ == kLbModels[i].info->board) {
-                built.push_back({kLbModels[i].info->firmware, kLbModels[i].info->idrom_crc});
-                entries.push_back(&kLbModels[i]);
-            }
-        int rc = match_fw_image(bits, len, board_, built, "IDROM CRC", err);
-        const LbEntry *e = rc >= 0 ? entries[static_cast<size_t>(rc)] : nullptr;
+        const LbEntry *e = nullptr;
+        int rc = match_image(bits, len, e, err);
         if (rc < 0) {
             fill_status(st, firmware());
             err = board_ + ": configuration failed, board " +
                   (configured() ? "keeps firmware " + firmware() : std::string("stays blank")) +
                   ": " + err;
-            return rc;
+            return rc == -ENODEV ? -EINVAL : rc;
         }
         start(*e);
         break;
@@ -166,6 +180,50 @@ int LocalBusBoard::config(uint32_t op, const uint8_t *bits, size_t len, vb_confi
     return 0;
 }
 
+bool LocalBusBoard::flash_reg(uint32_t addr) const
+{
+    return port_ && addr >= kFlashRegCtrl && addr <= kFlashRegIcap;
+}
+
+// One xfer that touches the flash registers, word by word; each word takes
+// one ClockLow cycle of board time.
+int LocalBusBoard::flash_access(const vb_xfer &x, bool write, const uint8_t *data,
+                                std::vector<uint8_t> &out, std::string &err)
+{
+    uint64_t cycle = fw_->clock_low_hz ? 1000000000ull / fw_->clock_low_hz : 30;
+    for (uint32_t off = 0; off < x.size; off += 4) {
+        uint32_t a = x.addr + off;
+        uint64_t now = model_->now_ns();
+        if (write) {
+            uint32_t v = 0;
+            std::memcpy(&v, data + off, 4);
+            if (flash_reg(a)) {
+                port_->write(a, v, now, 2 * cycle);
+            } else {
+                vb_xfer one{a, 4};
+                model_->write(&one, 1, data + off);
+            }
+        } else if (flash_reg(a)) {
+            uint32_t v = port_->read(a, now);
+            const uint8_t *b = reinterpret_cast<const uint8_t *>(&v);
+            out.insert(out.end(), b, b + 4);
+        } else {
+            vb_xfer one{a, 4};
+            int rc = model_->read(&one, 1, out, err);
+            if (rc < 0)
+                return rc;
+        }
+        model_->run_until(model_->now_ns() + cycle);
+        uint32_t boot = 0;
+        if (port_->take_iprog(boot)) {
+            // The FPGA reconfigures: the rest of the burst goes nowhere.
+            boot_from_flash(boot, true);
+            return 0;
+        }
+    }
+    return 0;
+}
+
 int LocalBusBoard::lb_read(const vb_xfer *x, size_t n, std::vector<uint8_t> &out,
                            std::string &err)
 {
@@ -173,7 +231,34 @@ int LocalBusBoard::lb_read(const vb_xfer *x, size_t n, std::vector<uint8_t> &out
         err = "board " + board_ + " is not configured (blank FPGA): no local-bus target";
         return -ENODEV;
     }
-    return model_->read(x, n, out, err);
+    if (!port_)
+        return model_->read(x, n, out, err);
+    size_t i = 0;
+    while (i < n) {
+        if (!model_) {
+            out.resize(out.size() + x[i].size, 0xFF);
+            i++;
+            continue;
+        }
+        bool flash = flash_reg(x[i].addr) ||
+                     (x[i].addr < kFlashRegCtrl && x[i].addr + x[i].size > kFlashRegCtrl);
+        if (flash) {
+            int rc = flash_access(x[i], false, nullptr, out, err);
+            if (rc < 0)
+                return rc;
+            i++;
+            continue;
+        }
+        size_t j = i; // a run of xfers that do not touch the flash port
+        while (j < n && !flash_reg(x[j].addr) &&
+               !(x[j].addr < kFlashRegCtrl && x[j].addr + x[j].size > kFlashRegCtrl))
+            j++;
+        int rc = model_->read(x + i, j - i, out, err);
+        if (rc < 0)
+            return rc;
+        i = j;
+    }
+    return 0;
 }
 
 int LocalBusBoard::lb_write(const vb_xfer *x, size_t n, const uint8_t *data, std::string &err)
@@ -182,7 +267,107 @@ int LocalBusBoard::lb_write(const vb_xfer *x, size_t n, const uint8_t *data, std
         err = "board " + board_ + " is not configured (blank FPGA): no local-bus target";
         return -ENODEV;
     }
-    model_->write(x, n, data);
+    if (!port_) {
+        model_->write(x, n, data);
+        return 0;
+    }
+    std::vector<uint8_t> none;
+    for (size_t i = 0; i < n && model_; i++) {
+        bool flash = flash_reg(x[i].addr) ||
+                     (x[i].addr < kFlashRegCtrl && x[i].addr + x[i].size > kFlashRegCtrl);
+        if (flash) {
+            int rc = flash_access(x[i], true, data, none, err);
+            if (rc < 0)
+                return rc;
+        } else {
+            model_->write(x + i, 1, data);
+        }
+        data += x[i].size;
+    }
+    return 0;
+}
+
+bool LocalBusBoard::flash_configured() const
+{
+    // Spartan-6 boards (5i25, 6i25, ...) configure from an SPI flash.
+    return part_.compare(0, 4, "6slx") == 0;
+}
+
+int LocalBusBoard::check_image(void *ctx, const uint8_t *p, size_t n, std::string &err)
+{
+    const LbEntry *e = nullptr;
+    return static_cast<LocalBusBoard *>(ctx)->match_image(p, n, e, err);
+}
+
+void LocalBusBoard::boot_from_flash(uint32_t addr, bool by_iprog)
+{
+    unconfigure();
+    BootResult r = port_->boot(addr, by_iprog, check_image, this);
+    if (!r.configured)
+        return;
+    const LbEntry *e = nullptr;
+    std::string err;
+    if (match_image(r.image.data(), r.image.size(), e, err) == 0)
+        start(*e);
+    port_->set_bootsts(r.bootsts);
+}
+
+namespace {
+// A vboard firmware image (fwimage.h) for a built firmware.
+std::vector<uint8_t> make_image(const FwInfo &fw)
+{
+    std::vector<uint8_t> v(kFwImageSize, 0);
+    auto put = [&v](size_t off, uint32_t x) {
+        for (int i = 0; i < 4; i++)
+            v[off + static_cast<size_t>(i)] = static_cast<uint8_t>(x >> (8 * i));
+    };
+    put(0, kFwMagic);
+    put(4, kFwVersion);
+    put(8, static_cast<uint32_t>(kFwImageSize));
+    put(12, fw.idrom_crc);
+    std::memcpy(v.data() + 16, fw.board, std::min<size_t>(15, std::strlen(fw.board)));
+    std::memcpy(v.data() + 32, fw.firmware, std::min<size_t>(31, std::strlen(fw.firmware)));
+    put(64, crc32(v.data(), 64));
+    return v;
+}
+} // namespace
+
+int LocalBusBoard::attach_flash(const std::string &path, const std::string &part,
+                                uint32_t speedup, const std::string &firmware, std::string &err)
+{
+    if (!flash_configured()) {
+        err = "board " + board_ + " (" + part_ +
+              ") is configured by its bus, it has no configuration flash";
+        return -ENOTSUP;
+    }
+    const FlashPart *fp = flash_part(part.empty() ? "m25p16" : part);
+    if (!fp) {
+        err = "unknown flash part '" + part + "' (known: " + flash_part_names() + ")";
+        return -EINVAL;
+    }
+    const LbEntry *fw = nullptr;
+    if (!firmware.empty() && !(fw = find(firmware))) {
+        err = "firmware " + firmware + " is not built into this vboard for board " + board_ +
+              " (built: " + join(firmwares()) + ")";
+        return -ENOENT;
+    }
+    auto flash = std::make_unique<SpiFlash>();
+    bool created = false;
+    int rc = flash->open(*fp, path, created, err);
+    if (rc < 0)
+        return rc;
+    flash->set_speedup(speedup);
+    if (created && fw) {
+        std::vector<uint8_t> bb = flash_boot_block(kFlashUserAddr, kFlashFallbackAddr);
+        std::vector<uint8_t> img = make_image(*fw->info);
+        flash->poke(kFlashBootAddr, bb.data(), bb.size());
+        flash->poke(kFlashFallbackAddr, img.data(), img.size());
+        flash->poke(kFlashUserAddr, img.data(), img.size());
+    }
+    port_.reset();
+    flash_ = std::move(flash);
+    port_ = std::make_unique<FlashPort>(*flash_);
+    boot_from_flash(kFlashBootAddr, false);
     return 0;
 }
 

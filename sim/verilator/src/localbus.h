@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "board.h"
+#include "flashport.h"
 #include "fwinfo.h"
 #include "pins.h"
 
@@ -72,17 +73,31 @@ class LocalBusBoard final : public Board {
                 std::string &err) override;
     int lb_write(const vb_xfer *x, size_t n, const uint8_t *data, std::string &err) override;
     int dump(bool on, const std::string &path, std::string &err) override;
+    int attach_flash(const std::string &path, const std::string &part, uint32_t speedup,
+                     const std::string &firmware, std::string &err) override;
+    bool flash_configured() const override;
 
   private:
     const LbEntry *find(const std::string &firmware) const;
     void start(const LbEntry &e);
     void unconfigure();
+    // The firmware an image selects: 0 and e, or -EINVAL (bad image) /
+    // -ENODEV (another board's) with the reason.
+    int match_image(const uint8_t *p, size_t n, const LbEntry *&e, std::string &err) const;
+    static int check_image(void *ctx, const uint8_t *p, size_t n, std::string &err);
+    // Configure from the flash (power-up, IPROG) starting at addr.
+    void boot_from_flash(uint32_t addr, bool by_iprog);
+    bool flash_reg(uint32_t addr) const;
+    int flash_access(const vb_xfer &x, bool write, const uint8_t *data, std::vector<uint8_t> &out,
+                     std::string &err);
 
     std::string board_, part_;
     PinBank pins_;
     const FwInfo *fw_ = nullptr;
     std::unique_ptr<LbModelBase> model_;
     uint64_t now_ = 0; // board time while blank
+    std::unique_ptr<SpiFlash> flash_;
+    std::unique_ptr<FlashPort> port_;
 };
 
 std::unique_ptr<Board> make_localbus_board(const std::string &board);

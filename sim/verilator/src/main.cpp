@@ -25,6 +25,8 @@ namespace {
 struct Options {
     vb::ServerOptions server;
     std::string board, firmware, dump, machine;
+    std::string flash, flash_part;
+    uint32_t flash_speedup = 1;
     std::vector<vb_loop> loops;
     std::vector<vb_quad> quads;
     bool list = false;
@@ -37,6 +39,7 @@ void usage(FILE *f)
                  "              [--loop FROM:TO[:inv]]... [--loop-file FILE]\n"
                  "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd|.fst] [--log]\n"
                  "              [--spin USEC] [--socket-mode OCTAL] [--machine FILE]\n"
+                 "              [--flash FILE] [--flash-part m25p16] [--flash-speedup N]\n"
                  "       vboard --list\n"
                  "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");
 }
@@ -144,6 +147,8 @@ int parse_args(int argc, char **argv, Options &o)
         {"log", no_argument, nullptr, 'g'},           {"list", no_argument, nullptr, 'i'},
         {"help", no_argument, nullptr, 'h'},          {"spin", required_argument, nullptr, 'p'},
         {"socket-mode", required_argument, nullptr, 'm'}, {"machine", required_argument, nullptr, 'M'},
+        {"flash", required_argument, nullptr, 'F'},   {"flash-part", required_argument, nullptr, 'P'},
+        {"flash-speedup", required_argument, nullptr, 'S'},
         {nullptr, 0, nullptr, 0}};
     std::string err;
     int c;
@@ -159,6 +164,15 @@ int parse_args(int argc, char **argv, Options &o)
         case 'i': o.list = true; break;
         case 'd': o.dump = optarg; break;
         case 'M': o.machine = optarg; break;
+        case 'F': o.flash = optarg; break;
+        case 'P': o.flash_part = optarg; break;
+        case 'S':
+            if (!parse_u32(optarg, o.flash_speedup) || o.flash_speedup == 0 ||
+                o.flash_speedup > 1000000) {
+                err = std::string("bad --flash-speedup '") + optarg + "': want 1..1000000";
+                goto bad;
+            }
+            break;
         case 'm': {
             char *end = nullptr;
             errno = 0;
@@ -232,8 +246,14 @@ int list_boards()
 int setup(vb::Board &b, const Options &o)
 {
     std::string err;
-    if (!o.firmware.empty() && b.load(o.firmware, err) < 0)
+    if (b.flash_configured() || !o.flash.empty() || !o.flash_part.empty()) {
+        // Flash-configured boards boot from their flash; --firmware is what
+        // a new flash is factory-programmed with.
+        if (b.attach_flash(o.flash, o.flash_part, o.flash_speedup, o.firmware, err) < 0)
+            goto bad;
+    } else if (!o.firmware.empty() && b.load(o.firmware, err) < 0) {
         goto bad;
+    }
     for (const vb_loop &l : o.loops)
         if (b.pins().loop(l.from, l.to, l.invert != 0, b.now_ns(), err) < 0)
             goto bad;

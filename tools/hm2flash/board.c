@@ -1,0 +1,195 @@
+/* SPDX-License-Identifier: GPL-2.0-or-later */
+/*
+ * board.c - hm2flash's board sources and progress display (hm2flash.h).
+ *
+ *   sim:SOCKET   a virtual board (bin/vboard): the hm2_sim backend's llio.
+ *                The board runs in lockstep with a clock of this tool's own:
+ *                every register access takes 1 us of board time and a wait
+ *                for the flash advances the clock instead of sleeping, so
+ *                the board's flash timing is met without real waiting and
+ *                the times printed are board times.
+ */
+#define _GNU_SOURCE
+#include <ctype.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#include "hm2_sim_llio.h"
+#include "hm2flash.h"
+
+#define SIM_ACCESS_NS 1000u
+
+/* The simulated clock of a sim: board (hm2_sim_now_fn has no context; one
+ * tool run drives one board). */
+static int64_t sim_clock_ns = 1;
+
+static int64_t sim_now(void)
+{
+    sim_clock_ns += SIM_ACCESS_NS;
+    return sim_clock_ns;
+}
+
+static void sim_delay(void *ctx, uint64_t ns)
+{
+    (void)ctx;
+    sim_clock_ns += (int64_t)ns;
+}
+
+uint64_t hm2flash_now_ns(struct hm2flash_board *bd)
+{
+    (void)bd;
+    return (uint64_t)sim_clock_ns;
+}
+
+static void sim_log(void *ctx, int level, const char *line)
+{
+    struct hm2flash_board *bd = ctx;
+    if (level == HM2_ERR && !bd->why[0])
+        snprintf(bd->why, sizeof(bd->why), "%s", line);
+}
+
+static void progress_cb(void *ctx, const char *phase, uint32_t done, uint32_t total);
+
+static int open_sim(struct hm2flash_board *bd, const char *path)
+{
+    struct hm2_sim_board *sb = calloc(1, sizeof(*sb));
+    if (!sb) {
+        snprintf(bd->why, sizeof(bd->why), "out of memory");
+        return -ENOMEM;
+    }
+    int r = hm2_sim_setup(sb, path, bd->board->name, 0, sim_now, sim_log, bd);
+    if (r) {
+        free(sb);
+        return r;
+    }
+    if (sb->hello.state != VB_STATE_CONFIGURED) {
+        snprintf(bd->why, sizeof(bd->why),
+                 "the %s at %s is not configured (blank FPGA: no firmware came up from its "
+                 "flash), so its flash cannot be reached through the hm2 firmware",
+                 bd->display_name, path);
+        hm2_sim_teardown(sb);
+        free(sb);
+        return -ENODEV;
+    }
+    snprintf(bd->firmware, sizeof(bd->firmware), "%s", sb->hello.firmware);
+    snprintf(bd->description, sizeof(bd->description), "%s (virtual board at %s)",
+             bd->display_name, path);
+    bd->handle = sb;
+    bd->io.llio = &sb->llio;
+    return 0;
+}
+
+int hm2flash_open(struct hm2flash_board *bd, const char *device, const char *addr)
+{
+    memset(bd, 0, sizeof(*bd));
+    bd->tty = isatty(STDOUT_FILENO);
+    bd->board = hm2_board_lookup(device);
+    if (!bd->board) {
+        snprintf(bd->why, sizeof(bd->why), "No %s board found (unknown board name)", device);
+        return -ENODEV;
+    }
+    if (bd->board->programmable) {
+        snprintf(bd->why, sizeof(bd->why),
+                 "the %s has no configuration flash: its FPGA is loaded over the bus at "
+                 "every start (use firmware= of its driver)", bd->board->name);
+        return -ENOTSUP;
+    }
+    size_t i = 0;
+    for (; bd->board->name[i] && i + 1 < sizeof(bd->display_name); i++)
+        bd->display_name[i] = (char)toupper((unsigned char)bd->board->name[i]);
+    bd->display_name[i] = 0;
+    bd->io.delay_ns = sim_delay;
+    bd->io.delay_ctx = bd;
+    bd->io.progress = progress_cb;
+    bd->io.progress_ctx = bd;
+    if (!addr || strncmp(addr, "sim:", 4) != 0) {
+        snprintf(bd->why, sizeof(bd->why),
+                 "--addr %s: want sim:SOCKET (a virtual board); no %s board found",
+                 addr ? addr : "(none)", bd->display_name);
+        return -ENODEV;
+    }
+    snprintf(bd->source, sizeof(bd->source), "%s", addr);
+    return open_sim(bd, addr + 4);
+}
+
+void hm2flash_close(struct hm2flash_board *bd)
+{
+    struct hm2_sim_board *sb = bd->handle;
+    if (sb) {
+        hm2_sim_teardown(sb);
+        free(sb);
+    }
+    bd->handle = NULL;
+}
+
+int hm2flash_reopen(struct hm2flash_board *bd)
+{
+    struct hm2_flash_io keep = bd->io;
+    hm2flash_close(bd);
+    bd->why[0] = 0;
+    int r = open_sim(bd, bd->source + 4);
+    uint8_t sig = keep.signature;
+    uint32_t size = keep.size;
+    keep.llio = bd->io.llio;
+    bd->io = keep;
+    bd->io.signature = sig;
+    bd->io.size = size;
+    return r;
+}
+
+/* ---- progress ---- */
+
+static void print_line(struct hm2flash_board *bd, int final)
+{
+    uint32_t done = bd->last_done, total = bd->last_total ? bd->last_total : 1;
+    int pct = (int)((uint64_t)done * 100 / total);
+    double secs = (double)(hm2flash_now_ns(bd) - bd->phase_start_ns) / 1e9;
+    char bar[41];
+    int fill = pct * 40 / 100;
+    for (int i = 0; i < 40; i++)
+        bar[i] = i < fill ? '#' : '.';
+    bar[40] = 0;
+    if (final) {
+        printf("%s  %-11s [%s] %3d%% %u bytes in %.2f s\n", bd->tty ? "\r" : "", bd->phase, bar,
+               pct, done, secs);
+    } else {
+        double left = done ? secs * (double)(total - done) / (double)done : 0.0;
+        printf("\r  %-11s [%s] %3d%% %.1f s, about %.1f s left ", bd->phase, bar, pct, secs,
+               left);
+    }
+    fflush(stdout);
+}
+
+static void progress_cb(void *ctx, const char *phase, uint32_t done, uint32_t total)
+{
+    struct hm2flash_board *bd = ctx;
+    if (bd->phase && strcmp(bd->phase, phase) != 0) {
+        print_line(bd, 1);
+        bd->phase_start_ns = hm2flash_now_ns(bd);
+    }
+    bd->phase = phase;
+    bd->last_done = done;
+    bd->last_total = total;
+    int pct = (int)((uint64_t)done * 100 / (total ? total : 1));
+    if (bd->tty && pct != bd->last_pct)
+        print_line(bd, 0);
+    bd->last_pct = pct;
+}
+
+void hm2flash_progress_begin(struct hm2flash_board *bd)
+{
+    bd->phase = NULL;
+    bd->last_pct = -1;
+    bd->phase_start_ns = hm2flash_now_ns(bd);
+}
+
+void hm2flash_progress_end(struct hm2flash_board *bd)
+{
+    if (bd->phase)
+        print_line(bd, 1);
+    bd->phase = NULL;
+}
