@@ -104,6 +104,28 @@ def test_halmeter_reports_an_unloaded_component(live: LiveHal) -> None:
     assert p.wait(timeout=10) == 0
 
 
+def test_viewers_are_components_that_end_with_the_session(live: LiveHal) -> None:
+    """halmeter and the web server are HAL user components named
+    PROGRAM-PID (LinuxCNC's halmeter is halmeter-PID): `unload all` at the
+    end of a session ends them (exit status 0) instead of leaving them
+    watching a session that is gone."""
+    meter = live.start(BIN / "halmeter", "--text", "siggen.0.amplitude")
+    web, _ = live.start_web(BIN / "halweb")
+    names = {f"halmeter-{meter.pid}", f"halweb-{web.pid}"}
+    deadline = time.monotonic() + 60
+    while True:
+        comps = live.halcmd("show", "comp").stdout
+        ready = {n for n in names if re.search(rf"\sUser\s+{n}\s+\d+\s+ready$", comps, re.M)}
+        if ready == names:
+            break
+        assert time.monotonic() < deadline, comps
+        time.sleep(0.1)
+    r = live.halcmd("unload", "all")
+    assert r.returncode == 0, r.stderr
+    assert meter.wait(timeout=20) == 0 and web.wait(timeout=20) == 0
+    assert "siggen" not in live.halcmd("show", "comp").stdout
+
+
 class Terminal:
     """halmeter on a terminal (a pty)."""
 

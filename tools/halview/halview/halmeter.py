@@ -18,6 +18,7 @@ from types import FrameType
 
 from . import halapi, model
 from .halapi import HalError
+from .session import SessionComponent
 from .webargs import add_web_args
 
 KIND_WORDS = ("pin", "sig", "param")
@@ -148,10 +149,11 @@ def main(argv: list[str] | None = None) -> int:
         if a.interval <= 0:
             raise HalError(f"interval {a.interval}: must be more than 0")
         m = Meter(items)
-        if a.text or not sys.stdout.isatty():
-            run_text(m, a.interval, a.count, stop)
-        else:
-            run_screen(m, a.interval, a.small, stop)
+        with SessionComponent("halmeter"):
+            if a.text or not sys.stdout.isatty():
+                run_text(m, a.interval, a.count, stop)
+            else:
+                run_screen(m, a.interval, a.small, stop)
     except HalError as e:
         print(f"halmeter: {e}", file=sys.stderr)
         return 1

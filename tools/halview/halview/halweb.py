@@ -17,6 +17,7 @@ import sys
 from . import halapi, model
 from .capture import ScopeConfig
 from .halapi import HalError
+from .session import SessionComponent
 from .webargs import add_web_args
 from .webserver import Options, Server
 
@@ -108,7 +109,8 @@ def serve(opts: Options) -> int:
             pass
 
     try:
-        asyncio.run(main())
+        with SessionComponent("halweb"):
+            asyncio.run(main())
     except OSError as e:
         raise HalError(f"cannot listen on {opts.host}:{opts.port}: {e.strerror}") from None
     return 0
