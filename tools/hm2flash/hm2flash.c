@@ -17,10 +17,19 @@
 #include "hm2/boards.h"
 #include "hm2/cfgflash.h"
 #include "hm2flash.h"
+#include "program.h"
 
 #define BIT_MAX (16u << 20)
 
-enum cmd { CMD_INFO_BOARD, CMD_WRITE, CMD_VERIFY, CMD_BACKUP, CMD_RELOAD, CMD_INFO_FILE };
+enum cmd {
+    CMD_INFO_BOARD,
+    CMD_WRITE,
+    CMD_VERIFY,
+    CMD_BACKUP,
+    CMD_RELOAD,
+    CMD_INFO_FILE,
+    CMD_PROGRAM
+};
 
 struct opts {
     const char *device, *addr, *file;
@@ -38,9 +47,11 @@ static void usage(FILE *f)
             "  hm2flash --device NAME --addr SOURCE [options] --verify FILE.bit\n"
             "  hm2flash --device NAME --addr SOURCE [options] --backup-flash FILE\n"
             "  hm2flash --device NAME --addr SOURCE [options] --reload\n"
+            "  hm2flash --device NAME --addr SOURCE --program FILE (.BIT; .rbf for pluto)\n"
             "  hm2flash --info FILE.bit\n"
             "  hm2flash --help\n"
-            "SOURCE: sim:SOCKET (a virtual board, bin/vboard --socket SOCKET)\n"
+            "SOURCE: sim:SOCKET (a virtual board, bin/vboard --socket SOCKET); for the\n"
+            "        EPP boards (7i43, pluto) any EPP port: ppdev:/dev/parport0, raw:0x378, ...\n"
             "Options:\n"
             "  --fallback          use the fallback area of the flash\n"
             "  --fix-boot-block    write a boot block when --write finds none\n"
@@ -64,6 +75,7 @@ static int parse(int argc, char **argv, struct opts *o)
         {"info", required_argument, 0, 'i'},   {"fallback", no_argument, 0, 'f'},
         {"fix-boot-block", no_argument, 0, 'x'}, {"no-auto-verify", no_argument, 0, 'n'},
         {"verbose", no_argument, 0, 'v'},      {"help", no_argument, 0, 'h'},
+        {"program", required_argument, 0, 'p'},
         {0, 0, 0, 0}};
     memset(o, 0, sizeof(*o));
     o->cmd = CMD_INFO_BOARD;
@@ -77,6 +89,7 @@ static int parse(int argc, char **argv, struct opts *o)
         case 'b': set_cmd(o, CMD_BACKUP, optarg); break;
         case 'r': set_cmd(o, CMD_RELOAD, NULL); break;
         case 'i': set_cmd(o, CMD_INFO_FILE, optarg); break;
+        case 'p': set_cmd(o, CMD_PROGRAM, optarg); break;
         case 'f': o->fallback = 1; break;
         case 'x': o->fix_boot = 1; break;
         case 'n': o->no_verify = 1; break;
@@ -91,7 +104,7 @@ static int parse(int argc, char **argv, struct opts *o)
     }
     if (o->ncmds > 1) {
         fprintf(stderr, "hm2flash: give one command (--write, --verify, --backup-flash, "
-                        "--reload, --info)\n");
+                        "--reload, --program, --info)\n");
         return 2;
     }
     if (o->cmd != CMD_INFO_FILE && !o->device) {
@@ -342,6 +355,14 @@ int main(int argc, char **argv)
         return rc;
     if (o.cmd == CMD_INFO_FILE)
         return cmd_info_file(&o);
+    if (o.cmd == CMD_PROGRAM) {
+        struct program_req q = {hm2_board_lookup(o.device), o.addr, o.file};
+        if (!q.board && strcasecmp(o.device, "pluto") != 0) {
+            fprintf(stderr, "hm2flash: No %s board found (unknown board name)\n", o.device);
+            return 1;
+        }
+        return hm2flash_program(&q);
+    }
     struct hm2flash_board bd;
     if (hm2flash_open(&bd, o.device, o.addr)) {
         fprintf(stderr, "hm2flash: %s\n", bd.why);
