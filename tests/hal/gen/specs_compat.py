@@ -193,3 +193,32 @@ spec(
         note="command at enable's rising edge by mode, poserr, is-oriented after 100 periods",
     )
 )
+
+_KB_CODES = [0, 1, 6, 7, 8, 9, 15, 20, 27, 36, 43, 48, 55, 56, 62, 63]
+
+
+def _kb_rows(rng: random.Random) -> list[Row]:
+    """Each key alone (press, hold, release), keys pressed and released
+    together (one event a period, in scan order), random patterns."""
+    n = len(_KB_CODES)
+    rows: list[Row] = [[0.0] * n]
+    for k in range(n):
+        rows += [[float(i == k) for i in range(n)]] * 3 + [[0.0] * n] * 2
+    for group in ([0, 1], [3, 4], [0, 15], [5, 9, 12], list(range(n))):
+        on = [float(i in group) for i in range(n)]
+        rows += [on] * (len(group) + 2) + [[0.0] * n] * (len(group) + 2)
+    for _ in range(40):
+        rows.append([float(rng.random() < 0.2) for _ in range(n)])
+    return rows + [[0.0] * n] * (n + 2)
+
+
+spec(
+    Spec(
+        "sim_matrix_kb",
+        [(f"button.c{c % 8:02d}.r{c // 8:02d}", "b") for c in _KB_CODES],
+        [("out", "u")],
+        _kb_rows,
+        setps=[{}, {}],
+        note="keycodes: press, release, held and idle, one event a period in scan order",
+    )
+)
