@@ -75,7 +75,7 @@ def test_pluto_stepper_ends_on_its_step(tmp_path: Path) -> None:
         s = f["steps"]
         # the drive took exactly the steps the firmware put out (the
         # firmware's own position, position-fb); pluto_step's position loop
-        # stops within a step short of the command (its deadband), and its
+        # stops within one step of the command (its deadband), and its
         # position-fb says so
         assert s["taken"] == s["commanded"] == math.floor(f["final_fb"] * 400), (a, f)
         assert abs(f["final_fb"] - f["final_cmd"]) * 400 < 1
