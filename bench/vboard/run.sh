@@ -4,6 +4,11 @@
 # bench/vboard: speed of the virtual board (docs/vboard.md "PERFORMANCE").
 #   1. simulated ClockLow cycles per wall second, 5i20 SVST8_4, idle and with
 #      4 stepgens running; anchor: real time = 33.33 M ClockLow cycles/s.
+#      Beside it the same per CPU second of the board process (its utime +
+#      stime over the run): on a shared machine the wall figure also
+#      measures the other load.  Idle once more with VBOARD_EVAL=full (each
+#      evaluation through V::eval(), as before the scheduler was called
+#      directly; sim/verilator/src/localbus_model.h).
 #   2. wall time of one servo cycle's read+write (the hm2 driver's per-period
 #      register lists, one READ + one WRITE request) with no time advance and
 #      with a 1 ms advance per cycle; anchor: goal <= 20 us, hm2_eth ~100 us,
@@ -41,14 +46,39 @@ start_board() {
     exit 1
 }
 stop_board() { kill "$pid"; wait "$pid" || true; pid=""; }
+# cpu_ticks: utime + stime of the board process, in clock ticks.
+cpu_ticks() { awk '{print $14 + $15}' "/proc/$pid/stat"; }
+# speed ARGS...: the bench's speed line, then the rate per board CPU second.
+speed() {
+    local t0 t1 line
+    t0=$(cpu_ticks)
+    line=$("$bench" "$dir/vb.sock" speed "$@")
+    t1=$(cpu_ticks)
+    python3 - "$line" "$t0" "$t1" "$(getconf CLK_TCK)" <<'PY'
+import re
+import sys
+
+line, t0, t1, hz = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
+print(line)
+m = re.search(r"\((\d+) cycles in", line)
+cpu = (t1 - t0) / hz
+if m and cpu > 0:
+    rate = int(m.group(1)) / cpu
+    print(f"{'':32}{rate / 1e6:.3f} M ClockLow cycles per board CPU second "
+          f"({cpu:.2f} s CPU, {100 * rate / 33.333e6:.1f}% of real time)")
+PY
+}
 
 echo "5i20 SVST8_4, $(nproc) CPUs; anchors: real time = 33.333 M ClockLow cycles/s;"
 echo "read+write goal <= 20 us (hm2_eth ~100 us, SoC bridge 59 us)"
 start_board
-printf "simulation, idle:               "; "$bench" "$dir/vb.sock" speed 20
+printf "simulation, idle:               "; speed 20
+stop_board
+VBOARD_EVAL=full start_board
+printf "idle, VBOARD_EVAL=full:         "; speed 20
 stop_board
 start_board
-printf "simulation, 4 stepgens running: "; "$bench" "$dir/vb.sock" speed 20 steps
+printf "simulation, 4 stepgens running: "; speed 20 steps
 printf "servo read+write, no advance:   "; "$bench" "$dir/vb.sock" servo 2000 0
 printf "servo read+write, 1 ms advance: "; "$bench" "$dir/vb.sock" servo 30 1000000
 printf "protocol alone (HELLO):         "; "$bench" "$dir/vb.sock" hello 5000
@@ -64,5 +94,5 @@ stop_board
 printf "machine floor (socketpair):     "; "$bench" pingpong 5000
 # The 5i25's 7I76x2 has no ClockHigh logic (no PWM): only ClockLow edges run.
 BOARD=5i25 FW=7I76x2 start_board
-printf "5i25 7I76x2 simulation, idle:   "; "$bench" "$dir/vb.sock" speed 20
+printf "5i25 7I76x2 simulation, idle:   "; speed 20
 stop_board

@@ -12,10 +12,22 @@
 // time base.  The firmware only uses rising edges; ClockLow's falling edge
 // is put on the ClockHigh falling edge of cycle (R-1)/2 for the waveform.
 // Edge k of ClockHigh is at k*Th after the model started.
+//
+// Evaluation.  V::eval() wraps the model's scheduler in per-call cleanup
+// that takes two mutexes (garbage of dynamic objects, the message queue of
+// $display); at six evaluations per ClockLow cycle that was ~16% of the
+// board's time (perf, 5i20 SVST8_4).  Between the edges of one request the
+// model calls the scheduler itself (RootEval, the Verilated root's _eval
+// named by the generated lb_models.cpp) and runs the full V::eval() once at
+// the end of each request and every kFlushEdges edges, which delivers any
+// queued message; a running waveform dump uses V::eval() throughout, and
+// so does every evaluation with VBOARD_EVAL=full in the environment (for
+// bench/vboard's before/after figure).
 #ifndef VBOARD_LOCALBUS_MODEL_H
 #define VBOARD_LOCALBUS_MODEL_H
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 
@@ -55,9 +67,10 @@ template <std::size_t N> inline void get(const VlWide<N> &d, uint32_t *w)
 }
 } // namespace port
 
-template <class V> class LbModel final : public LbModelBase {
+template <class V, auto RootEval> class LbModel final : public LbModelBase {
   public:
     static constexpr int kResetCycles = 4; // ClockLow cycles of rst after configuration
+    static constexpr uint64_t kFlushEdges = 1u << 16; // full V::eval() at least this often
 
     LbModel(const FwInfo &info, PinBank &pins, uint64_t start)
         : pins_(pins), th_(1000000000ull / info.clock_high_hz),
@@ -71,6 +84,8 @@ template <class V> class LbModel final : public LbModelBase {
             th_ *= ratio_;
             ratio_ = 1;
         }
+        const char *ev = std::getenv("VBOARD_EVAL");
+        full_eval_ = ev && std::strcmp(ev, "full") == 0;
         ctx_ = std::make_unique<VerilatedContext>();
         ctx_->traceEverOn(true);
         m_ = std::make_unique<V>(ctx_.get(), "top");
@@ -106,6 +121,7 @@ template <class V> class LbModel final : public LbModelBase {
     {
         while (next_edge_ <= t)
             edge();
+        flush();
         if (t > now_)
             now_ = t;
     }
@@ -132,6 +148,7 @@ template <class V> class LbModel final : public LbModelBase {
                 continue;
             if (!m_->lb_rvalid) {
                 m_->lb_rd = 0;
+                flush();
                 out.resize(base);
                 err = "local bus: read of 0x" + hex(addrs[e - 1]) +
                       " got no lb_rvalid from the firmware";
@@ -140,6 +157,7 @@ template <class V> class LbModel final : public LbModelBase {
             uint32_t v = m_->lb_rdata;
             std::memcpy(&out[base + (e - 1) * 4], &v, 4); // host is little-endian
         }
+        flush();
         return 0;
     }
 
@@ -160,6 +178,7 @@ template <class V> class LbModel final : public LbModelBase {
         // register takes the value; after that a probe sees the effect.
         low_cycle();
         low_cycle();
+        flush();
     }
 
     int dump(bool on, const std::string &path, std::string &err) override
@@ -209,6 +228,26 @@ template <class V> class LbModel final : public LbModelBase {
         return b;
     }
 
+    // Evaluate after an input change: the scheduler alone, or the full
+    // V::eval() while dumping and every kFlushEdges calls.
+    void eval()
+    {
+        if (full_eval_ || vcd_ || ++since_flush_ >= kFlushEdges) {
+            flush();
+            return;
+        }
+        m_->rootp->vlSymsp->__Vm_activity = true; // as V::eval() does, for tracing
+        RootEval(m_->rootp);
+    }
+
+    // The full V::eval(): with no input change since the last evaluation it
+    // only delivers queued messages and releases garbage.
+    void flush()
+    {
+        m_->eval();
+        since_flush_ = 0;
+    }
+
     // One ClockHigh cycle: rising edge at next_edge_, falling edge Th/2 later.
     void edge()
     {
@@ -220,7 +259,7 @@ template <class V> class LbModel final : public LbModelBase {
         m_->clk_high = 1;
         if (phase == 0)
             m_->clk_low = 1;
-        m_->eval();
+        eval();
         if (vcd_)
             vcd_->dump(t * 1000);
         port::get(m_->io_out, out_.data());
@@ -229,7 +268,7 @@ template <class V> class LbModel final : public LbModelBase {
         m_->clk_high = 0;
         if (phase == (ratio_ - 1) / 2)
             m_->clk_low = 0;
-        m_->eval();
+        eval();
         if (vcd_)
             vcd_->dump(t * 1000 + th_ * 500);
         k_++;
@@ -256,13 +295,14 @@ template <class V> class LbModel final : public LbModelBase {
     std::unique_ptr<V> m_;
     std::unique_ptr<VerilatedVcdC> vcd_;
     std::string vcd_path_, fst_path_; // fst_path_ set: convert vcd_path_ on close
-    uint64_t next_edge_ = 0, now_ = 0, k_ = 0;
+    uint64_t next_edge_ = 0, now_ = 0, k_ = 0, since_flush_ = 0;
+    bool full_eval_ = false;
 };
 
-template <class V>
+template <class V, auto RootEval>
 std::unique_ptr<LbModelBase> make_lb_model(const FwInfo &info, PinBank &pins, uint64_t start)
 {
-    return std::make_unique<LbModel<V>>(info, pins, start);
+    return std::make_unique<LbModel<V, RootEval>>(info, pins, start);
 }
 
 } // namespace vb
