@@ -8,6 +8,8 @@
  *                for the flash advances the clock instead of sleeping, so
  *                the board's flash timing is met without real waiting and
  *                the times printed are board times.
+ *   pci:[ADDR]   a Mesa PCI board (5i25, 6i25) through sysfs (source_pci.c):
+ *                real time, waits sleep.
  */
 #define _GNU_SOURCE
 #include <ctype.h>
@@ -16,10 +18,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "hm2_sim_llio.h"
 #include "hm2flash.h"
+#include "source_pci.h"
 
 #define SIM_ACCESS_NS 1000u
 
@@ -39,10 +43,24 @@ static void sim_delay(void *ctx, uint64_t ns)
     sim_clock_ns += (int64_t)ns;
 }
 
+static uint64_t mono_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+}
+
+static void real_delay(void *ctx, uint64_t ns)
+{
+    (void)ctx;
+    struct timespec ts = {(time_t)(ns / 1000000000ull), (long)(ns % 1000000000ull)};
+    while (nanosleep(&ts, &ts) != 0 && errno == EINTR)
+        ;
+}
+
 uint64_t hm2flash_now_ns(struct hm2flash_board *bd)
 {
-    (void)bd;
-    return (uint64_t)sim_clock_ns;
+    return bd->is_pci ? mono_ns() : (uint64_t)sim_clock_ns;
 }
 
 static void sim_log(void *ctx, int level, const char *line)
@@ -106,10 +124,23 @@ int hm2flash_open(struct hm2flash_board *bd, const char *device, const char *add
     bd->io.delay_ctx = bd;
     bd->io.progress = progress_cb;
     bd->io.progress_ctx = bd;
-    if (!addr || strncmp(addr, "sim:", 4) != 0) {
+    if (!addr || strncmp(addr, "pci:", 4) == 0) {
+        bd->is_pci = 1;
+        bd->io.delay_ns = real_delay;
+        const char *a = addr ? addr + 4 : "";
+        int r = hm2flash_open_pci(a, bd->board->name, &bd->io.llio, &bd->handle, bd->why,
+                                  sizeof(bd->why));
+        if (r)
+            return r;
+        snprintf(bd->description, sizeof(bd->description), "%s (PCI %s)", bd->display_name,
+                 a[0] ? a : "first found");
+        snprintf(bd->firmware, sizeof(bd->firmware), "(see hm2pinout pci:%s)", a);
+        return 0;
+    }
+    if (strncmp(addr, "sim:", 4) != 0) {
         snprintf(bd->why, sizeof(bd->why),
-                 "--addr %s: want sim:SOCKET (a virtual board); no %s board found",
-                 addr ? addr : "(none)", bd->display_name);
+                 "--addr %s: want sim:SOCKET (a virtual board) or pci:[ADDR]; no %s board found",
+                 addr, bd->display_name);
         return -ENODEV;
     }
     snprintf(bd->source, sizeof(bd->source), "%s", addr);
@@ -118,6 +149,11 @@ int hm2flash_open(struct hm2flash_board *bd, const char *device, const char *add
 
 void hm2flash_close(struct hm2flash_board *bd)
 {
+    if (bd->is_pci) {
+        hm2flash_close_pci(bd->handle);
+        bd->handle = NULL;
+        return;
+    }
     struct hm2_sim_board *sb = bd->handle;
     if (sb) {
         hm2_sim_teardown(sb);
@@ -128,6 +164,11 @@ void hm2flash_close(struct hm2flash_board *bd)
 
 int hm2flash_reopen(struct hm2flash_board *bd)
 {
+    if (bd->is_pci) {
+        /* the window stays mapped; the FPGA takes a moment to reconfigure */
+        bd->io.delay_ns(bd, 200000000ull);
+        return 0;
+    }
     struct hm2_flash_io keep = bd->io;
     hm2flash_close(bd);
     bd->why[0] = 0;

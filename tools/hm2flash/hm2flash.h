@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
  * hm2flash.h - the board hm2flash works on: an llio reached through a
- * source (sim:SOCKET), the flash access on it, a clock (the board's
+ * source (sim:SOCKET, pci:[ADDR]), the flash access on it, a clock (the board's
  * simulated one for a virtual board) and the progress display.
  */
 #ifndef HM2FLASH_H
@@ -20,6 +20,7 @@ struct hm2flash_board {
     char source[160];
     struct hm2_flash_io io;
     void *handle;           /* the source's state */
+    int is_pci;             /* pci: source (real time), else sim: (board time) */
     /* progress display */
     int tty;
     const char *phase;

@@ -31,6 +31,7 @@
 #include "hm2_7i43_llio.h"
 #include "hm2_sim_llio.h"
 #include "pluto_common.h"
+#include "source_pci.h"
 
 #define BIT_MAX (16u << 20)
 
@@ -153,11 +154,32 @@ static int program_llio(hm2_llio_t *llio, const struct hm2_bitfile *bf, const ch
     return 0;
 }
 
+static int program_pci(const struct program_req *q, uint8_t *buf, const struct hm2_bitfile *bf)
+{
+    char model[16], why[300];
+    snprintf(model, sizeof(model), "%s", q->board->name);
+    char *dash = strchr(model, '-');
+    if (dash)
+        *dash = 0;
+    hm2_llio_t *llio = NULL;
+    void *h = NULL;
+    int rc = 1;
+    if (hm2flash_open_pci(q->addr + 4, model, &llio, &h, why, sizeof(why)))
+        fprintf(stderr, "hm2flash: %s\n", why);
+    else
+        rc = program_llio(llio, bf, q->file, "PCI bridge configuration port");
+    if (!rc)
+        printf("Board configured: DONE high\n");
+    hm2flash_close_pci(h);
+    free(buf);
+    return rc;
+}
+
 static int program_localbus(const struct program_req *q)
 {
-    if (!q->addr || strncmp(q->addr, "sim:", 4) != 0) {
-        fprintf(stderr, "hm2flash: --addr %s: want sim:SOCKET for a %s (PCI boards on real "
-                        "hardware: not supported by hm2flash yet, use the driver's firmware=)\n",
+    int pci = q->addr && strncmp(q->addr, "pci:", 4) == 0;
+    if (!pci && (!q->addr || strncmp(q->addr, "sim:", 4) != 0)) {
+        fprintf(stderr, "hm2flash: --addr %s: want sim:SOCKET or pci:[ADDR] for a %s\n",
                 q->addr ? q->addr : "(none)", q->board->name);
         return 1;
     }
@@ -165,6 +187,8 @@ static int program_localbus(const struct program_req *q)
     struct hm2_bitfile bf;
     if (load_bit(q->file, q->board, &buf, &bf))
         return 1;
+    if (pci)
+        return program_pci(q, buf, &bf);
     struct hm2_sim_board *sb = calloc(1, sizeof(*sb));
     if (!sb || hm2_sim_setup(sb, q->addr + 4, q->board->name, 0, NULL, hm2_log, NULL)) {
         free(sb);
