@@ -222,3 +222,91 @@ spec(
         note="keycodes: press, release, held and idle, one event a period in scan order",
     )
 )
+
+_SAH_X = ["homesw-out", "maxsw-out", "minsw-out", "bothsw-out"]
+_SAH_X += ["maxsw-homesw-out", "minsw-homesw-out", "bothsw-homesw-out"]
+_SAH_ALL = ["homesw-all", "limitsw-all", "limitsw-homesw-all"]
+
+
+def _sah_rows(rng: random.Random) -> list[Row]:
+    """Columns Xcurrent-pos, Xhoming, Ycurrent-pos, Yhoming: X through every
+    switch edge of both instances (fine steps at the edges) with no axis, X,
+    Y and both homing; NaN and infinities; random positions."""
+    pts: list[float] = []
+    for c in (4.0, 5.0, -4.0, -5.0, 1.0):
+        pts += [round(c + i * 0.002, 4) for i in range(-8, 9)]
+    for c in (2.0, 3.0, -2.0, -3.0, 0.3, 2.5):
+        pts += [round(c + i * 0.05, 4) for i in range(-6, 7)]
+    pts += [NAN, INF, -INF, 0.4, 0.2, 1.0125, 0.9875]
+    rows: list[Row] = []
+    for xh, yh in ((0, 0), (1, 0), (0, 1), (1, 1)):
+        rows += [[p, float(xh), 1.5 if yh else 0.5, float(yh)] for p in pts]
+    rows += [[round(rng.uniform(-6, 6), 3), float(rng.random() < 0.3), 0.5, 0.0] for _ in range(40)]
+    return rows
+
+
+spec(
+    Spec(
+        "sim_axis_hardware",
+        [("Xcurrent-pos", "f"), ("Xhoming", "b"), ("Ycurrent-pos", "f"), ("Yhoming", "b")],
+        [(f"X{o}", "b") for o in _SAH_X] + [(o, "b") for o in _SAH_ALL],
+        _sah_rows,
+        setps=[
+            {
+                "Xmaxsw-lower": "4",
+                "Xmaxsw-upper": "5",
+                "Xminsw-lower": "-5",
+                "Xminsw-upper": "-4",
+            },
+            {
+                "Xhomesw-pos": "0.3",
+                "Xhomesw-hyst": "0.2",
+                "Xmaxsw-lower": "2",
+                "Xmaxsw-upper": "3",
+                "Xminsw-lower": "-3",
+                "Xminsw-upper": "-2",
+                "limit-offset": "0.5",
+                "Yhomesw-pos": "0.5",
+                "Yhomesw-hyst": "0.2",
+                "Ymaxsw-lower": "1",
+                "Ymaxsw-upper": "2",
+            },
+        ],
+        functs=["update"],
+        note="X's switches at their edges, homing of X and of another axis, the -all outputs",
+    )
+)
+
+_SAH_AXES = ["X", "X2", "Y", "Y2", "Z", "A", "U", "V"]
+
+
+def _sah_axes_rows(rng: random.Random) -> list[Row]:
+    return [[round(-9.0 + i * 0.125, 4)] for i in range(145)] + [[NAN]]
+
+
+spec(
+    Spec(
+        "sim_axis_hardware",
+        [(f"{a}current-pos", "f") for a in _SAH_AXES],
+        [(f"{a}bothsw-homesw-out", "b") for a in _SAH_AXES]
+        + [(f"{a}maxsw-out", "b") for a in _SAH_AXES]
+        + [(o, "b") for o in _SAH_ALL],
+        lambda rng: [r * len(_SAH_AXES) for r in _sah_axes_rows(rng)],
+        setps=[
+            {
+                k: v
+                for i, a in enumerate(_SAH_AXES)
+                for k, v in (
+                    (f"{a}homesw-pos", str(-8 + 2 * i)),
+                    (f"{a}maxsw-lower", str(-7.5 + 2 * i)),
+                    (f"{a}maxsw-upper", str(-7.5 + 2 * i + 0.5)),
+                    (f"{a}minsw-lower", str(-6.5 + 2 * i)),
+                    (f"{a}minsw-upper", str(-6.5 + 2 * i + 0.5)),
+                )
+            }
+        ],
+        functs=["update"],
+        test="sim_axis_hardware-axes",
+        note="every axis's pins at its own switch positions",
+    )
+)
