@@ -17,6 +17,10 @@
 //   NUM_LEDS             LEDs of the board (0 = no LED module)
 //   NUM_STEPGEN, SG_TABLE_WIDTH, NUM_ENCODER, NUM_PWMGEN   module counts
 //   CLOCK_LOW_HZ         ClockLow in Hz (IDROM value; encoder filter reset value)
+//   NUM_XLAT             1 = EPP translation RAM (hm2_xlat_ram) present
+//   NUM_SSERIAL, SS_NCHAN, SS_DIV   Smart Serial ports, channels per port,
+//                        ClockLow periods per bit
+//   SS_RX_SRC            per Smart Serial channel: pin+1 of RxData (0 = none)
 //   *_BASE               MD base addresses
 //   IDROM                IDROM image, word k in bits 32k+31..32k
 //   ALT_SRC              per pin, 16 bits: index into mod_out (0 = none)
@@ -25,7 +29,9 @@
 //
 // mod_out layout (also what hm2gen assumes): bit 0 = constant 0, then
 // step_out (instance i, bit k at 1 + i*SG_TABLE_WIDTH + k), then PWM Out0
-// of every instance, Out1 of every instance, NotEnable of every instance.
+// of every instance, Out1 of every instance, NotEnable of every instance,
+// then the Smart Serial TxData of every channel (port p, channel c at
+// p*SS_NCHAN + c).
 `default_nettype none
 
 module hm2_core #(
@@ -43,6 +49,14 @@ module hm2_core #(
     parameter [15:0]  SG_BASE        = 16'h2000,
     parameter [15:0]  ENC_BASE       = 16'h3000,
     parameter [15:0]  PWM_BASE       = 16'h4000,
+    parameter integer NUM_XLAT       = 0,
+    parameter [15:0]  XLAT_BASE      = 16'h7800,
+    parameter integer NUM_SSERIAL    = 0,
+    parameter integer SS_NCHAN       = 1,
+    parameter integer SS_DIV         = 13,
+    parameter [15:0]  SS_BASE        = 16'h5A00,
+    parameter [16*(NUM_SSERIAL > 0 ? NUM_SSERIAL*SS_NCHAN : 1)-1:0] SS_RX_SRC =
+        {16*(NUM_SSERIAL > 0 ? NUM_SSERIAL*SS_NCHAN : 1){1'b0}},
     parameter [8191:0] IDROM         = {8192{1'b0}},
     parameter [16*IOPORTS*PORTWIDTH-1:0] ALT_SRC = {16*IOPORTS*PORTWIDTH{1'b0}},
     parameter [64*(NUM_ENCODER > 0 ? NUM_ENCODER : 1)-1:0] ENC_SRC =
@@ -67,13 +81,16 @@ module hm2_core #(
     localparam integer IOW  = IOPORTS * PORTWIDTH;
     localparam integer NENC = NUM_ENCODER > 0 ? NUM_ENCODER : 1;
     localparam integer SGW  = NUM_STEPGEN * SG_TABLE_WIDTH;
-    localparam integer MODW = 1 + SGW + 3 * NUM_PWMGEN;
+    localparam integer NSSC = NUM_SSERIAL * SS_NCHAN;
+    localparam integer NSS  = NSSC > 0 ? NSSC : 1;
+    localparam integer MODW = 1 + SGW + 3 * NUM_PWMGEN + NSSC;
 
     wire [31:0] rd_idrom, rd_wd, rd_io;
     wire        bite;
     wire [IOW-1:0] alt_out;
     wire [MODW-1:0] mod_out;
     wire [NENC-1:0] enc_a, enc_b, enc_idx, enc_idxmask;
+    wire [NSS-1:0]  ss_rx;
 
     assign mod_out[0] = 1'b0;
 
@@ -108,8 +125,31 @@ module hm2_core #(
         end
     endgenerate
 
-    wire [31:0] rd_sg, rd_enc, rd_pwm;
+    wire [31:0] rd_sg, rd_enc, rd_pwm, rd_xlat, rd_ss;
     generate
+        if (NSSC > 0) begin : g_ss
+            wire [NSSC-1:0] ss_tx;
+            hm2_sserial #(.BASE(SS_BASE), .NUM(NUM_SSERIAL), .NCHAN(SS_NCHAN), .DIV(SS_DIV)) u_ss (
+                .clk(clk), .rst(rst), .bus_addr(bus_addr), .bus_wdata(bus_wdata),
+                .bus_we(bus_we), .bus_re(bus_re), .bus_rdata(rd_ss), .tx(ss_tx), .rx(ss_rx)
+            );
+            assign mod_out[1 + SGW + 3*NUM_PWMGEN +: NSSC] = ss_tx;
+        end else begin : g_noss
+            assign rd_ss = 32'd0;
+            // no channel: the router's idle-line input is not read
+            /* verilator lint_off UNUSEDSIGNAL */
+            wire ss_unused = &ss_rx;
+            /* verilator lint_on UNUSEDSIGNAL */
+        end
+        if (NUM_XLAT > 0) begin : g_xlat
+            hm2_xlat_ram #(.BASE(XLAT_BASE)) u_xlat (
+                .clk(clk), .rst(rst), .bus_addr(bus_addr), .bus_wdata(bus_wdata),
+                .bus_we(bus_we), .bus_re(bus_re), .bus_rdata(rd_xlat)
+            );
+        end else begin : g_noxlat
+            assign rd_xlat = 32'd0;
+        end
+
         if (NUM_STEPGEN > 0) begin : g_sg
             wire [SGW-1:0] step_out;
             hm2_stepgen_bank #(.BASE(SG_BASE), .NUM(NUM_STEPGEN), .TABLE_WIDTH(SG_TABLE_WIDTH)) u_sg (
@@ -150,13 +190,15 @@ module hm2_core #(
     /* verilator lint_on UNUSEDSIGNAL */
 
     hm2_pin_router #(
-        .IOWIDTH(IOW), .MODW(MODW), .NENC(NENC), .ALT_SRC(ALT_SRC), .ENC_SRC(ENC_SRC)
+        .IOWIDTH(IOW), .MODW(MODW), .NENC(NENC), .ALT_SRC(ALT_SRC), .ENC_SRC(ENC_SRC),
+        .NSS(NSS), .SS_RX_SRC(SS_RX_SRC)
     ) u_router (
         .mod_out(mod_out), .io_in(io_in), .alt_out(alt_out),
-        .enc_a(enc_a), .enc_b(enc_b), .enc_idx(enc_idx), .enc_idxmask(enc_idxmask)
+        .enc_a(enc_a), .enc_b(enc_b), .enc_idx(enc_idx), .enc_idxmask(enc_idxmask),
+        .ss_rx(ss_rx)
     );
 
-    assign bus_rdata = rd_idrom | rd_wd | rd_io | rd_sg | rd_enc | rd_pwm;
+    assign bus_rdata = rd_idrom | rd_wd | rd_io | rd_sg | rd_enc | rd_pwm | rd_xlat | rd_ss;
 endmodule
 
 `default_nettype wire

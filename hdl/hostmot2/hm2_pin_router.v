@@ -11,7 +11,9 @@
 // Inputs: pin_ext = {io_in, 1'b0}, so index 0 is a constant 0 and index p+1
 // is I/O pin p.  Encoder i takes A, B, Index and IndexMask from
 // pin_ext[ENC_SRC[16(4i+f)+15:16(4i+f)]], f = 0..3.  The raw pin levels are
-// passed on; the encoder bank synchronizes them.
+// passed on; the encoder bank synchronizes them.  Smart Serial channel j
+// receives from pin_ext[SS_RX_SRC[16j+15:16j]] (a channel without an RxData
+// pin sees an idle line, 1).
 `default_nettype none
 
 module hm2_pin_router #(
@@ -19,7 +21,9 @@ module hm2_pin_router #(
     parameter integer MODW    = 1,   // width of mod_out (>= 1, bit 0 = 0)
     parameter integer NENC    = 1,   // encoder slots (>= 1)
     parameter [16*IOWIDTH-1:0] ALT_SRC = {16*IOWIDTH{1'b0}},
-    parameter [64*NENC-1:0]    ENC_SRC = {64*NENC{1'b0}}
+    parameter [64*NENC-1:0]    ENC_SRC = {64*NENC{1'b0}},
+    parameter integer NSS     = 1,   // Smart Serial channel slots (>= 1)
+    parameter [16*NSS-1:0]     SS_RX_SRC = {16*NSS{1'b0}}
 ) (
     // Not every module output goes to a pin (e.g. step-table bits of a
     // firmware without table pins), and bit 0 is the constant "none".
@@ -32,7 +36,8 @@ module hm2_pin_router #(
     output wire [NENC-1:0]    enc_a,
     output wire [NENC-1:0]    enc_b,
     output wire [NENC-1:0]    enc_idx,
-    output wire [NENC-1:0]    enc_idxmask
+    output wire [NENC-1:0]    enc_idxmask,
+    output wire [NSS-1:0]     ss_rx
 );
     wire [IOWIDTH:0] pin_ext = {io_in, 1'b0};
 
@@ -55,6 +60,10 @@ module hm2_pin_router #(
             assign enc_b[i]       = (SB <= IOWIDTH) ? pin_ext[SB] : 1'b0;
             assign enc_idx[i]     = (SI <= IOWIDTH) ? pin_ext[SI] : 1'b0;
             assign enc_idxmask[i] = (SM <= IOWIDTH) ? pin_ext[SM] : 1'b0;
+        end
+        for (i = 0; i < NSS; i = i + 1) begin : g_ss
+            localparam integer SR = {16'd0, SS_RX_SRC[16*i +: 16]};
+            assign ss_rx[i] = (SR > 0 && SR <= IOWIDTH) ? pin_ext[SR] : 1'b1;
         end
     endgenerate
 endmodule

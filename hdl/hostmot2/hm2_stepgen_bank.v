@@ -12,9 +12,10 @@
 //   reg 6 PulseIdle   W   per instance
 //   reg 7 TableData   W   per instance
 //   reg 8 TableLength W   per instance
-//   reg 9 Master DDS  W   once (instance 0 address only)
+//   reg 9 Master DDS  R/W once (instance 0 address only; reads back the
+//                         value written, as on Mesa's firmware)
 //
-// Write-only registers read as 0, as on stock Mesa firmware.  The master DDS
+// The other write-only registers read as 0, as on stock Mesa firmware.  The master DDS
 // is a 32-bit phase accumulator clocked by ClockLow; its carry is the basic
 // rate tick shared by all instances (power-up value 0 = all stepgens frozen).
 `default_nettype none
@@ -94,11 +95,13 @@ module hm2_stepgen_bank #(
         end
     endgenerate
 
-    // ---- read back: only the accumulator is readable
+    // ---- read back: the accumulators and the master DDS
     reg [31:0] rd_d;
     integer k;
     always @(*) begin
         rd_d = 32'd0;
+        if (in_range && reg_off == 8'd9 && inst == 6'd0)
+            rd_d = master_q;
         for (k = 0; k < NUM; k = k + 1)
             if (in_range && reg_off == 8'd1 && {26'd0, inst} == k)
                 rd_d = acc_rd[k*32 +: 32];

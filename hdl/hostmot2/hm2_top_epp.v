@@ -22,6 +22,14 @@ module hm2_top_epp #(
     parameter [15:0]  SG_BASE        = 16'h2000,
     parameter [15:0]  ENC_BASE       = 16'h3000,
     parameter [15:0]  PWM_BASE       = 16'h4000,
+    parameter integer NUM_XLAT       = 0,
+    parameter [15:0]  XLAT_BASE      = 16'h7800,
+    parameter integer NUM_SSERIAL    = 0,
+    parameter integer SS_NCHAN       = 1,
+    parameter integer SS_DIV         = 13,
+    parameter [15:0]  SS_BASE        = 16'h5A00,
+    parameter [16*(NUM_SSERIAL > 0 ? NUM_SSERIAL*SS_NCHAN : 1)-1:0] SS_RX_SRC =
+        {16*(NUM_SSERIAL > 0 ? NUM_SSERIAL*SS_NCHAN : 1){1'b0}},
     parameter [8191:0] IDROM         = {8192{1'b0}},
     parameter [16*IOPORTS*PORTWIDTH-1:0] ALT_SRC = {16*IOPORTS*PORTWIDTH{1'b0}},
     parameter [64*(NUM_ENCODER > 0 ? NUM_ENCODER : 1)-1:0] ENC_SRC =
@@ -61,7 +69,9 @@ module hm2_top_epp #(
         .NUM_STEPGEN(NUM_STEPGEN), .SG_TABLE_WIDTH(SG_TABLE_WIDTH),
         .NUM_ENCODER(NUM_ENCODER), .NUM_PWMGEN(NUM_PWMGEN), .CLOCK_LOW_HZ(CLOCK_LOW_HZ),
         .WD_BASE(WD_BASE), .IO_BASE(IO_BASE), .LED_BASE(LED_BASE), .SG_BASE(SG_BASE),
-        .ENC_BASE(ENC_BASE), .PWM_BASE(PWM_BASE),
+        .ENC_BASE(ENC_BASE), .PWM_BASE(PWM_BASE), .NUM_XLAT(NUM_XLAT), .XLAT_BASE(XLAT_BASE),
+        .NUM_SSERIAL(NUM_SSERIAL), .SS_NCHAN(SS_NCHAN), .SS_DIV(SS_DIV), .SS_BASE(SS_BASE),
+        .SS_RX_SRC(SS_RX_SRC),
         .IDROM(IDROM), .ALT_SRC(ALT_SRC), .ENC_SRC(ENC_SRC)
     ) u_core (
         .clk(clk_low), .clk_high(clk_high), .rst(rst),

@@ -7,12 +7,18 @@
 //                          counter.  Counts down once per clock while bit 31
 //                          is 0; bites when bit 31 goes 0 -> 1, so a value V
 //                          bites (V+1) clocks after it is written.  Bit 31
-//                          set = disabled.  Power-up 0x80000000.
+//                          set = disabled.  Power-up value 0: like Mesa's
+//                          firmware the dog bites one clock after reset, so
+//                          Status reads 1 until the host clears it (the
+//                          driver does at load).
 //   BASE+0x100 Status R/W  bit 0 = has bitten (sticky; a write replaces it)
 //   BASE+0x200 Cookie W    a write with bits 31..24 = 0x5A reloads the
 //                          counter from the last Timer write ("pet")
 //
 // bite is a one-clock pulse; the IOPorts turn every pin into an input on it.
+// It comes two clocks after the clock whose decrement passed below zero
+// (the underflow is registered, then the pulse), so the pins are released
+// at the same ClockLow as on Mesa's firmware.
 `default_nettype none
 
 module hm2_watchdog #(
@@ -41,6 +47,7 @@ module hm2_watchdog #(
     reg [31:0] timer_q;
     reg [31:0] reload_q;
     reg        status_q;
+    reg        under_q;   // the counter passed below zero on the last clock
 
     wire counting  = !timer_q[31];
     wire wr_timer  = bus_we && sel_tm;
@@ -50,9 +57,10 @@ module hm2_watchdog #(
 
     always @(posedge clk) begin
         if (rst) begin
-            timer_q   <= 32'h80000000;
-            reload_q  <= 32'h80000000;
+            timer_q   <= 32'h00000000;
+            reload_q  <= 32'h00000000;
             status_q  <= 1'b0;
+            under_q   <= 1'b0;
             bite      <= 1'b0;
             bus_rdata <= 32'd0;
         end else begin
@@ -65,7 +73,8 @@ module hm2_watchdog #(
                 timer_q <= timer_q - 32'd1;
             end
 
-            bite <= bite_d;
+            under_q <= bite_d;
+            bite    <= under_q;
             // A bite wins over a status write in the same clock.
             if (bite_d)
                 status_q <= 1'b1;

@@ -34,8 +34,8 @@ SEED = ROOT / "tests" / "data" / "seeds" / "hostmot2-5i20-SVST8_4-pinout.txt"
 FIRMWARES = [
     ("5i20", "SVST8_4", "PIN_SVST8_4_72", set()),
     ("5i20", "SV12", "PIN_SV12_72", set()),
-    ("7i43", "SVST4_4", "PIN_SVST4_4_48", {11}),
-    ("7i43", "SV8", "PIN_SV8_48", {11}),
+    ("7i43", "SVST4_4", "PIN_SVST4_4_48", set()),
+    ("7i43", "SV8", "PIN_SV8_48", set()),
     ("5i25", "7I76x2", "PIN_7I76x2_34", {193}),
 ]
 
@@ -115,8 +115,8 @@ def test_idrom_matches_stock_csv(
     assert len(words) == 256
     rows = list(csv.DictReader((PINMAPS / f"{stem}.csv").open()))
     b = BOARDS[board]
-    # header (type 2: PD offset 0x200)
-    assert words[0:3] == [2, 0x40, 0x200]
+    # header (type 3, as Mesa's builds: PD offset 0x1C0)
+    assert words[0:3] == [3, 0x40, 0x1C0]
     assert words[3].to_bytes(4, "little") + words[4].to_bytes(4, "little") == b["name"].encode()
     assert words[5:12] == [
         b["size"],
@@ -129,7 +129,7 @@ def test_idrom_matches_stock_csv(
     ]
     assert words[12:16] == [4, 64, 256, 256]
     # pin descriptors: every CSV row, then zeros
-    pd = words[0x200 // 4 :]
+    pd = words[0x1C0 // 4 :]
     assert len(rows) == b["ports"] * b["pw"]
     for r in rows:
         io = int(r["io_pin"])
@@ -157,7 +157,7 @@ def test_idrom_matches_stock_csv(
         )
         expect.append((int(m["gtag"]), [w0, w1, int(m["mp_mask_hex"], 16)]))
     published = [w for g, w in expect if g not in omitted]
-    md = words[0x40 // 4 : 0x200 // 4]
+    md = words[0x40 // 4 : 0x1C0 // 4]
     for i, w in enumerate(published):
         assert md[3 * i : 3 * i + 3] == w, f"MD {i}"
     assert all(x == 0 for x in md[3 * len(published) :]), "MD table not terminated by zeros"
@@ -241,7 +241,7 @@ def test_outputs_agree(
     assert doc["clocks"] == {"low_hz": b["lo"], "high_hz": b["hi"]}
     assert [c["name"] for c in doc["connectors"]] == b["con"]
     for p in doc["pins"]:
-        assert words[0x80 + p["io"]] == p["pd_word"]
+        assert words[doc["idrom"]["pd_offset"] // 4 + p["io"]] == p["pd_word"]
         want = DB25[p["bit"]] if b["pw"] == 17 else 2 * p["bit"] + 1
         assert p["label"] == f"{b['con'][p['port']]}-{want:02d}"
     # Verilog include: IDROM literal and ALT_SRC/ENC_SRC agree with the JSON

@@ -86,6 +86,9 @@ def test_blank_board_then_program(blank: VBoardClient) -> None:
     # Another firmware replaces it; RESET makes the board blank again.
     assert blank.program(_payload("5i20", "SV12")).firmware == "SV12"
     assert blank.hello().firmware == "SV12"
+    # the dog bites right after configuration (Timer powers up at 0, like
+    # Mesa's firmware): let it, then drive a pin
+    blank.advance(1000)
     blank.write(0x1100, 0x1)
     assert blank.pin(0).oe == 1
     assert blank.config(vboard.CONFIG_RESET).done == 0
@@ -144,6 +147,7 @@ def test_bad_images_leave_the_board_blank(blank: VBoardClient, image: object, te
     _assert_blank(blank)
     # A configured board keeps its firmware (the bad request is not applied).
     assert blank.program(_payload("5i20", "SV12")).done == 1
+    blank.advance(1000)  # past the power-up bite (the Timer powers up at 0)
     blank.write(0x1100, 0x3)
     with pytest.raises(VBoardError) as e:
         blank.program(data)

@@ -233,7 +233,10 @@ def test_dump_writes_a_vcd(client: VBoardClient, sockdir: Path) -> None:
 def test_watchdog_bites_while_the_host_is_silent(client: VBoardClient) -> None:
     """Lockstep: a probe client's advance is time passing for the watchdog too
     (spec §9.2: a Timer value V bites V+1 ClockLow clocks after it is written;
-    the bite makes every pin an input)."""
+    the bite makes every pin an input).  The dog bites once at power-up (the
+    Timer powers up at 0, like Mesa's firmware): clear that first."""
+    client.write(0x0C00, 0x80000000)
+    client.write(0x0D00, 0)
     client.write(IO_DATA, 0x0)
     client.write(IO_DDR, 0x1)
     assert client.pin(0).oe == 1

@@ -380,6 +380,10 @@ def test_the_c_client_talks_to_the_board(svst: VBoardProcess) -> None:
     """bin/vboard-bench speaks through the project's C client (vbclient)."""
     bench = vboard.build_dir() / "bin" / "vboard-bench"
     assert bench.exists(), f"{bench} not built (run `make build`)"
+    with svst.client() as c:
+        # what a driver does at load: disable the dog, clear its power-up bite
+        c.write(0x0C00, 0x80000000)
+        c.write(0x0D00, 0)
     r = subprocess.run(
         [str(bench), svst.socket_path, "servo", "20", "100000"],
         capture_output=True,

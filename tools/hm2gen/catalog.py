@@ -107,7 +107,6 @@ MODULES: dict[str, ModuleType] = {
             4,
             0x00,
             0x00,
-            implemented=False,
             max_instances=1,
             pin_name="AddrX",
         ),
@@ -124,6 +123,9 @@ MODULES: dict[str, ModuleType] = {
             0x10,
             0x3C,
             signals=_ssr_signals(),
+            # hm2_sserial.v speaks a remote protocol of its own, not Mesa's
+            # SSLBP yet: no firmware publishes it until a stock driver can
+            # talk to it (docs/hm2gen.md).
             implemented=False,
             max_instances=4,
             pin_name="SSerial",

@@ -45,6 +45,7 @@ def file_names(fw: Firmware) -> dict[str, str]:
 def verilog_include(fw: Firmware) -> str:
     b = fw.board
     enc = [v for inst in fw.encoder_src() for v in inst]
+    ssrx = fw.sserial_rx_src()
     mods = {m: fw.module(m) for m in MODULES}
 
     def base(name: str, default: int) -> int:
@@ -70,6 +71,15 @@ def verilog_include(fw: Firmware) -> str:
         f"localparam [15:0]  HM2_SG_BASE        = 16'h{base('StepGen', 0x2000):04x};",
         f"localparam [15:0]  HM2_ENC_BASE       = 16'h{base('Encoder', 0x3000):04x};",
         f"localparam [15:0]  HM2_PWM_BASE       = 16'h{base('PWMGen', 0x4000):04x};",
+        f"localparam integer HM2_NUM_XLAT       = {fw.count('TranslationRAM')};",
+        f"localparam [15:0]  HM2_XLAT_BASE      = 16'h{base('TranslationRAM', 0x7800):04x};",
+        f"localparam integer HM2_NUM_SSERIAL    = {fw.count('SSerial')};",
+        f"localparam integer HM2_SS_NCHAN       = {max(fw.sserial_channels, 1)};",
+        f"localparam integer HM2_SS_DIV         = {fw.sserial_bit_div};",
+        f"localparam [15:0]  HM2_SS_BASE        = 16'h{base('SSerial', 0x5A00):04x};",
+        "// Per Smart Serial channel: RxData pin + 1 (0 = none).",
+        f"localparam [{16 * max(len(ssrx), 1) - 1}:0] HM2_SS_RX_SRC = "
+        f"{_hexvec(ssrx or [0], 16)};",
         "// IDROM image, word 0 in bits 31..0 (also in the .idrom.hex file).",
         f"localparam [8191:0] HM2_IDROM = {_hexvec(fw.idrom(), 32)};",
         "// Per I/O pin: index into the module-output vector (0 = GPIO only).",
@@ -96,6 +106,13 @@ _PARAMS = (
     "SG_BASE",
     "ENC_BASE",
     "PWM_BASE",
+    "NUM_XLAT",
+    "XLAT_BASE",
+    "NUM_SSERIAL",
+    "SS_NCHAN",
+    "SS_DIV",
+    "SS_BASE",
+    "SS_RX_SRC",
     "IDROM",
     "ALT_SRC",
     "ENC_SRC",
@@ -246,6 +263,8 @@ def json_doc(fw: Firmware) -> dict[str, Any]:
             "top_module": fw.top_module,
             "idrom_type": fw.idrom_type,
             "stepgen_table_width": fw.stepgen_table_width,
+            "sserial_channels": fw.sserial_channels,
+            "sserial_bit_div": fw.sserial_bit_div,
             "notes": fw.notes,
         },
         "board": {

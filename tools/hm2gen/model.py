@@ -332,7 +332,37 @@ class Firmware:
             return 1 + pin.unit * tw + (code - 1)
         if pin.module == "PWMGen":
             return 1 + nsg * tw + (code - 1) * npwm + pin.unit
+        if pin.module == "SSerial" and pin.signal and pin.signal.startswith("TxData"):
+            return 1 + nsg * tw + 3 * npwm + pin.unit * self.sserial_channels + (code - 1)
+        if pin.module == "SSerial":
+            return 0  # TxEn: the channels drive no enable pin (full-duplex RS-422)
         raise DescriptionError(f"{self.source}: no output routing for module {pin.module}")
+
+    @property
+    def sserial_channels(self) -> int:
+        """Channels per Smart Serial port: the highest TxData/RxData channel
+        on any pin + 1 (0 without Smart Serial)."""
+        n = 0
+        for p in self.pins:
+            if p.module == "SSerial" and p.signal and p.signal[:6] in ("TxData", "RxData"):
+                n = max(n, (p.sec_pin & 0x0F))
+        return n if self.count("SSerial") else 0
+
+    @property
+    def sserial_bit_div(self) -> int:
+        """ClockLow periods per Smart Serial bit (2.5 MBaud nominal)."""
+        return max(4, round(self.board.clock_low / 2_500_000))
+
+    def sserial_rx_src(self) -> list[int]:
+        """Per channel (port p, channel c at p*channels + c): RxData pin + 1."""
+        nch = self.sserial_channels
+        src = [0] * (self.count("SSerial") * nch)
+        if not src:
+            return src  # no Smart Serial logic in this firmware
+        for p in self.pins:
+            if p.module == "SSerial" and p.signal and p.signal.startswith("RxData"):
+                src[p.unit * nch + (p.sec_pin & 0x0F) - 1] = p.io + 1
+        return src
 
     def alt_src(self) -> list[int]:
         return [self.module_output_index(p) for p in self.pins]

@@ -68,6 +68,10 @@ template <class V> class Hm2EppModelT final : public Hm2EppModel {
         for (uint32_t i = 0; i < 4 * ratio_; i++)
             clock(idle, o);
         m_->rst = 0;
+        // start-up: the design runs a few ClockLow cycles before the host
+        // can reach it (the hm2 watchdog's power-up bite is over then)
+        for (uint32_t i = 0; i < 4 * ratio_; i++)
+            clock(idle, o);
     }
     void clock(const EppIn &in, EppOut &out) override
     {

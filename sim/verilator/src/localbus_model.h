@@ -71,6 +71,9 @@ template <class V, auto RootEval> class LbModel final : public LbModelBase {
   public:
     static constexpr int kResetCycles = 4; // ClockLow cycles of rst after configuration
     static constexpr uint64_t kFlushEdges = 1u << 16; // full V::eval() at least this often
+    // ClockLow cycles the design runs after reset before the host can reach
+    // it (an FPGA's start-up; the hm2 watchdog's power-up bite is over then)
+    static constexpr int kStartupCycles = 4;
 
     LbModel(const FwInfo &info, PinBank &pins, uint64_t start)
         : pins_(pins), th_(1000000000ull / info.clock_high_hz),
@@ -104,7 +107,8 @@ template <class V, auto RootEval> class LbModel final : public LbModelBase {
         for (int i = 0; i < kResetCycles; i++)
             low_cycle();
         m_->rst = 0;
-        low_cycle();
+        for (int i = 0; i < kStartupCycles; i++)
+            low_cycle();
     }
 
     ~LbModel() override

@@ -121,7 +121,8 @@ async def program_timing(h: Harness, inst: int, pw: int, pi: int, ds: int, dh: i
 @cocotb.test()
 async def bus_rules(dut: Any) -> None:
     """Write-only registers read 0, unaddressed reads read 0, the accumulator
-    reads back 16.16 and a write loads it without producing a step."""
+    reads back 16.16 and a write loads it without producing a step, the
+    master DDS reads back what was written (as on Mesa's firmware, issue 13)."""
     h = Harness(dut)
     await h.start()
     for inst in range(h.num):
@@ -130,9 +131,13 @@ async def bus_rules(dut: Any) -> None:
         assert await h.read_acc(inst) == 0x12345678 + inst
     held = await h.bus.check_hold()
     assert held == 0x12345678 + h.num - 1
-    for reg in (R_RATE, R_MODE, R_DSETUP, R_DHOLD, R_PWIDTH, R_PIDLE, R_TDATA, R_TLEN, R_MASTER):
+    for reg in (R_RATE, R_MODE, R_DSETUP, R_DHOLD, R_PWIDTH, R_PIDLE, R_TDATA, R_TLEN):
         await h.write(reg, 0, 0x7)
         await h.bus.read_expect_zero(addr(reg, 0))
+    for v in (0xFFFFFFFF, 0x80000001, 0):
+        await h.write(R_MASTER, 0, v)
+        assert await h.bus.read(addr(R_MASTER, 0)) == v
+    await h.bus.read_expect_zero(addr(R_MASTER, 1))  # one register, at instance 0
     await h.bus.read_expect_zero(addr(R_ACC, h.num))  # instance past NUM
     await h.bus.read_expect_zero(addr(R_ACC, 63))
     await h.bus.read_expect_zero(BASE - 0x100)  # page below

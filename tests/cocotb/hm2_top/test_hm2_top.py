@@ -161,7 +161,9 @@ async def top_idrom(dut: Any) -> None:
     assert words == doc["idrom"]["words"]
     # the header says what the JSON board says (an independent decode)
     b = doc["board"]
-    assert words[0] == 2 and words[7:10] == [b["io_ports"], b["io_width"], b["port_width"]]
+    # every shipped firmware is IDROM type 3 like Mesa's builds (PDs at +0x1C0)
+    assert words[0:3] == [3, 0x40, 0x1C0]
+    assert words[7:10] == [b["io_ports"], b["io_width"], b["port_width"]]
     name = words[3].to_bytes(4, "little") + words[4].to_bytes(4, "little")
     assert name.decode() == b["idrom_name"]
     assert words[10:12] == [doc["clocks"]["low_hz"], doc["clocks"]["high_hz"]]

@@ -3,8 +3,11 @@
 section 9.2: every bus access is logged with the clock that took it, the bite
 pin is sampled every clock, and the model replays the same accesses and must
 produce the same bites on the same clocks and the same read data.  Direct
-checks of the spec formulas (bite (V+1) clocks after a Timer write, pet
-cookie 0x5A, bit 31 = disabled, sticky status) come on top."""
+checks of the spec formulas (the counter passes below zero (V+1) clocks after
+a Timer write, pet cookie 0x5A, bit 31 = disabled, sticky status) come on
+top, and the facts seen on Mesa's firmware (issue 13): Status reads 1 right
+after power-up (the power-up Timer value 0 bites at once), and the bite pulse
+that releases the pins comes one clock after the underflow is registered."""
 
 from __future__ import annotations
 
@@ -28,9 +31,10 @@ TIMER, STATUS, PET = 0x0C00, 0x0D00, 0x0E00
 
 class WatchdogModel:
     def __init__(self) -> None:
-        self.timer = 0x80000000
-        self.reload = 0x80000000
+        self.timer = 0
+        self.reload = 0
         self.status = 0
+        self.under = False  # underflow registered on the previous clock
 
     def step(self, writes: list[tuple[int, int]], read: int | None) -> tuple[bool, int | None]:
         """One clock: apply the writes taken on it; return (bite, read data)."""
@@ -40,14 +44,15 @@ class WatchdogModel:
         wr_timer = [d for a, d in writes if a == TIMER]
         wr_pet = any(a == PET and d >> 24 == 0x5A for a, d in writes)
         counting = not self.timer >> 31
-        bite = not wr_timer and not wr_pet and counting and self.timer == 0
+        under = not wr_timer and not wr_pet and counting and self.timer == 0
+        bite, self.under = self.under, under
         if wr_timer:
             self.timer = self.reload = wr_timer[-1]
         elif wr_pet:
             self.timer = self.reload
         elif counting:
             self.timer = (self.timer - 1) & 0xFFFFFFFF
-        if bite:
+        if under:
             self.status = 1
         else:
             for a, d in writes:
@@ -115,17 +120,23 @@ class Harness:
 async def watchdog_spec(dut: Any) -> None:
     h = Harness(dut)
     await h.start()
-    # power-up: disabled, not bitten
-    assert await h.read(TIMER) == 0x80000000
-    assert await h.read(STATUS) == 0
+    # power-up: Timer 0 passes below zero on the first clock, so the dog has
+    # bitten once (pins released on clock 1) and Status reads 1 until cleared
+    assert await h.read(TIMER) == 0xFFFFFFFF
+    assert await h.read(STATUS) == 1
     await ClockCycles(dut.clk, 50)
-    assert not h.bites
-    # Timer = V bites (V+1) clocks after the write, once
+    assert h.bites == [1]
+    # the driver's load sequence: Timer = disabled, then clear the status
+    await h.write(TIMER, 0x80000000)
+    await h.write(STATUS, 0)
+    assert await h.read(STATUS) == 0
+    # Timer = V passes below zero (V+1) clocks after the write; the bite
+    # pulse follows one clock later, once
     for v in (0, 1, 5, 40):
         await h.write(STATUS, 0)
         c = await h.write(TIMER, v)
         await ClockCycles(dut.clk, v + 10)
-        assert h.bites and h.bites[-1] == c + v + 1, (v, c, h.bites)
+        assert h.bites and h.bites[-1] == c + v + 2, (v, c, h.bites)
         assert await h.read(STATUS) == 1
         assert await h.read(TIMER) == 0xFFFFFFFF  # passed below zero, now stopped
         n = len(h.bites)
