@@ -138,6 +138,8 @@ class Context:
     # signals only removed lines created, with the part (a later `sets` of
     # one goes too; a kept `net` that creates it again revives it)
     dead_signals: dict[str, str] = field(default_factory=dict)
+    # signals a kept line created (a removed net does not make them dead)
+    live_signals: set[str] = field(default_factory=set)
 
     def owner(self, name: str) -> str | None:
         """The removed part a pin/param/function name belongs to, or None."""
@@ -260,7 +262,8 @@ def _rewrite_net(orig: list[str], res: list[str], ctx: Context) -> Action:
     names = ", ".join(r for r, _ in dropped)
     kept = [(a, o) for a, o, r in items if not ctx.owner(r)]
     if not kept:
-        ctx.dead_signals.setdefault(res[1], part)
+        if res[1] not in ctx.live_signals:
+            ctx.dead_signals.setdefault(res[1], part)
         return Action("remove", part, f"net of {names} only")
     words = orig[:2] + [w for a, o in kept for w in ((a, o) if a else (o,))]
     return Action("rewrite", part, f"without {names}", " ".join(words))
@@ -320,9 +323,17 @@ def classify(line: str, ini: Ini, ctx: Context) -> Action:
         action = _rewrite_net(orig, res, ctx)
         if action.kind != "remove":
             ctx.dead_signals.pop(res[1], None)
+            ctx.live_signals.add(res[1])
         return action
+    if cmd == "newsig" and len(flat) > 1:
+        ctx.dead_signals.pop(flat[1], None)
+        ctx.live_signals.add(flat[1])
+        return KEEP
     if cmd in ("sets", "gets", "stype", "delsig") and len(flat) > 1 and flat[1] in ctx.dead_signals:
         return Action("remove", ctx.dead_signals[flat[1]], f"{cmd} {flat[1]} (its net was removed)")
+    if cmd == "delsig" and len(flat) > 1:
+        ctx.live_signals.discard(flat[1])
+        return KEEP
     if cmd in HAL_COMMANDS_WITH_OBJECTS and len(flat) > 1:
         part = ctx.owner(flat[1])
         return Action("remove", part, f"{cmd} {flat[1]}") if part else KEEP

@@ -219,6 +219,24 @@ def test_signals_of_removed_nets() -> None:
     assert act("sets :x-off 1", ctx).kind == "keep"
 
 
+def test_signal_made_by_a_kept_net_stays() -> None:
+    """A removed net of a signal a kept net already made leaves it alive:
+    a later delsig or sets of it is kept (sim/axis/corexy deletes such
+    signals to rewire their pins)."""
+    ctx = hp.Context()
+    assert act("net j0pos-fb <= stepgen.0.position-fb", ctx).kind == "keep"
+    assert act("net j0pos-fb => joint.0.motor-pos-fb", ctx).kind == "remove"
+    assert act("delsig j0pos-fb", ctx).kind == "keep"
+    # deleted, then only a removed net makes it: gone again
+    assert act("net j0pos-fb => joint.0.motor-pos-fb", ctx).kind == "remove"
+    assert act("delsig j0pos-fb", ctx).kind == "remove"
+    # a newsig makes it alive too
+    ctx = hp.Context()
+    assert act("newsig s2 float", ctx).kind == "keep"
+    assert act("net s2 => joint.1.motor-pos-fb", ctx).kind == "remove"
+    assert act("sets s2 1.5", ctx).kind == "keep"
+
+
 def test_kinematics_line_with_missing_ini_value() -> None:
     a = act("loadrt [NOPE]KINEMATICS")
     assert (a.kind, a.part) == ("remove", "kinematics")
