@@ -74,6 +74,7 @@ void hm2_read(void *arg, long period)
     hostmot2_t *hm2 = ((struct hm2_funct_handle *)arg)->board;
     if (!hm2 || *hm2->io_error)
         return;
+    hm2->llio->period_ns = period;
     if (hm2_tram_read(hm2)) {
         hm2_msg(hm2, HM2_ERR, "read failed, setting io_error (clear it to retry)");
         io_failed(hm2);
@@ -111,6 +112,7 @@ void hm2_write(void *arg, long period)
      * bite is cleared); only the full configuration rewrite waits until the
      * user clears has_bit. */
     bool bitten = hm2_watchdog_has_bit(hm2);
+    hm2->llio->period_ns = period;
     if (hm2->needs_reset && !bitten && !recover(hm2))
         return;
     prepare_write(hm2, period);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 //
 // vboard - a virtual FPGA board on a Unix-domain socket (docs/vboard.md).
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -16,6 +17,8 @@
 #include <vector>
 
 #include "board.h"
+#include "../eth/eth_board.h"
+#include "../eth/udp.h"
 #include "plant/machine.h"
 #include "server.h"
 #include "vcd2fst.h"
@@ -27,6 +30,8 @@ struct Options {
     std::string board, firmware, dump, machine;
     std::string flash, flash_part;
     uint32_t flash_speedup = 1;
+    std::string udp;
+    uint32_t udp_tick_us = 0; // --udp-tick: board time per servo datagram (0 = free-running)
     std::vector<vb_loop> loops;
     std::vector<vb_quad> quads;
     bool list = false;
@@ -40,6 +45,8 @@ void usage(FILE *f)
                  "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd|.fst] [--log]\n"
                  "              [--spin USEC] [--socket-mode OCTAL] [--machine FILE]\n"
                  "              [--flash FILE] [--flash-part m25p16] [--flash-speedup N]\n"
+                 "       vboard --udp ADDR[:PORT] [--udp-tick USEC] [--socket PATH] --board 7i92|7i96s\n"
+                 "              [--firmware NAME] [--flash FILE] ...\n"
                  "       vboard --list\n"
                  "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");
 }
@@ -149,6 +156,7 @@ int parse_args(int argc, char **argv, Options &o)
         {"socket-mode", required_argument, nullptr, 'm'}, {"machine", required_argument, nullptr, 'M'},
         {"flash", required_argument, nullptr, 'F'},   {"flash-part", required_argument, nullptr, 'P'},
         {"flash-speedup", required_argument, nullptr, 'S'},
+        {"udp", required_argument, nullptr, 'U'},     {"udp-tick", required_argument, nullptr, 'T'},
         {nullptr, 0, nullptr, 0}};
     std::string err;
     int c;
@@ -173,6 +181,7 @@ int parse_args(int argc, char **argv, Options &o)
                 goto bad;
             }
             break;
+        case 'U': o.udp = optarg; break;
         case 'm': {
             char *end = nullptr;
             errno = 0;
@@ -185,6 +194,13 @@ int parse_args(int argc, char **argv, Options &o)
             o.server.socket_mode = static_cast<unsigned>(m);
             break;
         }
+        case 'T':
+            if (!parse_u32(optarg, o.udp_tick_us) || o.udp_tick_us == 0 ||
+                o.udp_tick_us > 1000000) {
+                err = std::string("bad --udp-tick '") + optarg + "': want microseconds, 1..1000000";
+                goto bad;
+            }
+            break;
         case 'p': {
             uint32_t us;
             if (!parse_u32(optarg, us) || us > 1000000) {
@@ -216,8 +232,13 @@ int parse_args(int argc, char **argv, Options &o)
         err = std::string("unexpected argument '") + argv[optind] + "'";
         goto bad;
     }
-    if (!o.list && (o.server.socket_path.empty() || o.board.empty())) {
-        err = "--socket and --board are required";
+    if (o.udp_tick_us && o.udp.empty()) {
+        err = "--udp-tick needs --udp";
+        goto bad;
+    }
+    if (!o.list && ((o.server.socket_path.empty() && o.udp.empty()) || o.board.empty())) {
+        err = "--socket and --board are required (an Ethernet board may take --udp instead of "
+              "--socket)";
         goto bad;
     }
     return -1;
@@ -229,9 +250,12 @@ bad:
 
 int list_boards()
 {
+    std::vector<std::string> seen; // a board two families know is listed once
     for (size_t i = 0; i < vb::kNumBoardFactories; i++)
         for (const std::string &name : vb::kBoardFactories[i]->boards()) {
-            std::string err;
+            if (std::find(seen.begin(), seen.end(), name) != seen.end())
+                continue;
+            seen.push_back(name);
             auto b = vb::kBoardFactories[i]->make(name);
             std::printf("%s (%s):", name.c_str(), b ? b->fpga_part().c_str() : "?");
             if (b)
@@ -303,6 +327,28 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "vboard: %s\n", err.c_str());
         return 1;
     }
+    auto *eth = dynamic_cast<vb::eth::EthBoard *>(board.get());
+    uint32_t udp_ip = 0;
+    uint16_t udp_port = 0;
+    if (!o.udp.empty()) {
+        if (!eth) {
+            std::fprintf(stderr, "vboard: --udp is for Ethernet boards (%s is not one)\n",
+                         o.board.c_str());
+            return 1;
+        }
+        if (!vb::eth::parse_udp_addr(o.udp, udp_ip, udp_port, err)) {
+            std::fprintf(stderr, "vboard: %s\n", err.c_str());
+            return 2;
+        }
+        // An Ethernet board runs on its own clock: datagrams carry no time.
+        // With --udp-tick the board runs only when a datagram asks it to.
+        if (!o.udp_tick_us) {
+            o.server.freerun = true;
+            o.server.freerun_slice_ns = 1000;
+            o.server.freerun_budget_ns = 100000;
+        }
+        eth->set_ip(udp_ip);
+    }
     if (setup(*board, o) != 0)
         return 1;
     std::unique_ptr<vb::plant::Machine> machine;
@@ -327,14 +373,29 @@ int main(int argc, char **argv)
     {
         vb::Server server(*board, o.server);
         server.set_plant(machine.get());
-        if (server.open(err) < 0) {
+        std::unique_ptr<vb::eth::UdpEndpoint> udp;
+        if (!o.udp.empty()) {
+            udp = std::make_unique<vb::eth::UdpEndpoint>(*eth, o.server.log);
+            udp->set_tick_ns(o.udp_tick_us * 1000ull);
+        }
+        if ((!o.server.socket_path.empty() && server.open(err) < 0) ||
+            (udp && udp->open(udp_ip, udp_port, err) < 0)) {
             std::fprintf(stderr, "vboard: %s\n", err.c_str());
             ::close(sfd);
             return 1;
         }
+        if (udp)
+            server.add_handler(udp.get());
         std::string fw = board->firmware();
-        std::printf("vboard: ready on %s (%s, %s)\n", o.server.socket_path.c_str(),
-                    board->name().c_str(), fw.empty() ? "blank" : fw.c_str());
+        std::string where = o.server.socket_path;
+        if (!o.udp.empty()) {
+            char b[64];
+            std::snprintf(b, sizeof b, "udp %u.%u.%u.%u:%u", udp_ip >> 24, (udp_ip >> 16) & 255,
+                          (udp_ip >> 8) & 255, udp_ip & 255, udp->port());
+            where += (where.empty() ? "" : " and ") + std::string(b);
+        }
+        std::printf("vboard: ready on %s (%s, %s)\n", where.c_str(), board->name().c_str(),
+                    fw.empty() ? "blank" : fw.c_str());
         std::fflush(stdout);
         status = server.run(sfd);
     }

@@ -25,7 +25,6 @@ namespace {
 constexpr size_t kHdr = sizeof(vb_header);
 constexpr uint32_t kLbWindow = 0x10000;   // the hm2 address space (64 KiB)
 constexpr int kSendTimeoutMs = 5000;      // a client that does not read its replies is dropped
-constexpr uint64_t kFreerunSliceNs = 100000;   // board time per free-running step
 constexpr uint64_t kFreerunMaxLagNs = 50000000; // behind by more: re-base (run as fast as we can)
 // One request may advance the board by at most this much board time (a
 // servo period is ~1 ms): a client's bad time stamp must not keep the board
@@ -659,12 +658,24 @@ void Server::freerun_step(uint64_t budget_ns)
             // not try to catch up on time we could never make up.
             fr_wall0_ = wall_ns();
             fr_board0_ = now;
-            target = now + kFreerunSliceNs;
+            target = now + opt_.freerun_slice_ns;
         }
-        board_.run_until(std::min(target, now + kFreerunSliceNs));
-        if (wall_ns() - wall0 > budget_ns)
+        board_.run_until(std::min(target, now + opt_.freerun_slice_ns));
+        if (wall_ns() - wall0 > budget_ns || handler_input())
             return;
     }
+}
+
+bool Server::handler_input() const
+{
+    if (handlers_.empty())
+        return false;
+    pollfd pf[4];
+    nfds_t n = 0;
+    for (const FdHandler *h : handlers_)
+        if (n < 4)
+            pf[n++] = {h->fd(), POLLIN, 0};
+    return ::poll(pf, n, 0) > 0;
 }
 
 int Server::run(int signal_fd)
@@ -679,6 +690,9 @@ int Server::run(int signal_fd)
         std::vector<pollfd> pf;
         pf.push_back({signal_fd, POLLIN, 0});
         pf.push_back({listen_fd_, POLLIN, 0});
+        for (const FdHandler *h : handlers_)
+            pf.push_back({h->fd(), POLLIN, 0});
+        const size_t first_conn = 2 + handlers_.size();
         for (const Conn &c : conns_)
             pf.push_back({c.fd, POLLIN, 0});
         bool spinning = opt_.spin_us && wall_ns() < spin_until;
@@ -696,13 +710,16 @@ int Server::run(int signal_fd)
         if (rc > 0) {
             // Clients first (their fds follow the listener), highest index
             // first so closing one does not shift the others.
-            for (size_t i = pf.size(); i-- > 2;) {
+            for (size_t i = pf.size(); i-- > first_conn;) {
                 if (!pf[i].revents)
                     continue;
-                size_t idx = i - 2;
+                size_t idx = i - first_conn;
                 if (!on_readable(conns_[idx]))
                     close_conn(idx);
             }
+            for (size_t i = 0; i < handlers_.size(); i++)
+                if (pf[2 + i].revents)
+                    handlers_[i]->on_readable();
             if (pf[1].revents & POLLIN)
                 accept_client();
             spin_until = wall_ns() + opt_.spin_us * 1000ull;
@@ -713,7 +730,7 @@ int Server::run(int signal_fd)
             return 0;
         }
         if (!lockstep_)
-            freerun_step(2000000);
+            freerun_step(opt_.freerun_budget_ns);
     }
 }
 

@@ -17,6 +17,15 @@ class Machine;
 
 namespace vb {
 
+// Another event source the poll loop serves (a virtual Ethernet board's UDP
+// endpoint, sim/verilator/eth/udp.h).
+class FdHandler {
+  public:
+    virtual ~FdHandler() = default;
+    virtual int fd() const = 0;
+    virtual void on_readable() = 0;
+};
+
 struct ServerOptions {
     std::string socket_path;
     // Permission bits of the socket file, set explicitly (not from the
@@ -28,6 +37,11 @@ struct ServerOptions {
     // request of a servo cycle usually follows at once, and waking a
     // sleeping process costs tens of us on some machines.  0 = never spin.
     unsigned spin_us = 0;
+    // Free-running: board time run per step, and wall time spent running
+    // before the sockets are looked at again (a board slower than real time
+    // still answers within about one budget).
+    uint64_t freerun_slice_ns = 100000;
+    uint64_t freerun_budget_ns = 2000000;
 };
 
 class Server {
@@ -50,6 +64,8 @@ class Server {
     // The machine behind the pins (vboard --machine): VB_PLANT requests and
     // one trace point per host request.
     void set_plant(plant::Machine *m) { plant_ = m; }
+    // Serve `h` from the poll loop too (not owned; must outlive run()).
+    void add_handler(FdHandler *h) { handlers_.push_back(h); }
 
   private:
     struct Conn {
@@ -103,6 +119,10 @@ class Server {
     int signal_fd_ = -1;
     bool stopping_ = false; // a signal arrived while a request ran
     plant::Machine *plant_ = nullptr;
+    std::vector<FdHandler *> handlers_;
+    // A datagram waits on a handler's fd: free-running stops to serve it
+    // (a board slower than real time would otherwise answer a slice late).
+    bool handler_input() const;
 };
 
 // Error reply helper.

@@ -44,10 +44,10 @@ static const struct hm2_pci_id ids[] = {
  * spec; these are the ones LinuxCNC 2.9's hm2_pci.so stores (5i21 8,
  * 5i24 2, 4i69 none). */
 static const struct hm2_board_info extra_boards[] = {
-    {"5i21", {"P1", "P1"}, 2, 32, "3s400pq208", 8, 1, 1, 48000000, 96000000},
-    {"5i24", {"P4", "P3", "P2"}, 3, 24, "6slx16ftg256", 2, 1, 0, 0, 0},
-    {"4i69-16", {"P1", "P3", "P4"}, 3, 24, "6slx16ftg256", 0, 1, 1, 0, 0},
-    {"4i69-25", {"P1", "P3", "P4"}, 3, 24, "6slx25ftg256", 0, 1, 1, 0, 0},
+    {"5i21", {"P1", "P1"}, 2, 32, "3s400pq208", 8, 1, 1, 48000000, 96000000, 0, NULL, 0},
+    {"5i24", {"P4", "P3", "P2"}, 3, 24, "6slx16ftg256", 2, 1, 0, 0, 0, 0, NULL, 0},
+    {"4i69-16", {"P1", "P3", "P4"}, 3, 24, "6slx16ftg256", 0, 1, 1, 0, 0, 0, NULL, 0},
+    {"4i69-25", {"P1", "P3", "P4"}, 3, 24, "6slx25ftg256", 0, 1, 1, 0, 0, 0, NULL, 0},
 };
 
 const struct hm2_pci_id *hm2_pci_match(const struct pci_sysfs_dev *d)

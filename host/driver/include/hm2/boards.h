@@ -23,6 +23,11 @@ struct hm2_board_info {
     int threadsafe;        /* PCI: 1, EPP: 0 */
     int programmable;      /* FPGA loaded by the host (not flash-configured) */
     unsigned clock_low, clock_high; /* stock IDROM clocks, informational */
+    int ethernet;          /* LBP16 over UDP (hm2_eth) */
+    /* Per-pin connector names (boards whose connectors are not one header
+     * per port, like the 7i96): num_pin_names entries; NULL = none. */
+    const char *const *pin_names;
+    int num_pin_names;
 };
 
 /* Case-insensitive lookup ("5i20", "7I43"); NULL if unknown. */

@@ -85,6 +85,11 @@ struct hm2_llio {
     int (*reset)(hm2_llio_t *self);
     int (*program_fpga)(hm2_llio_t *self, const struct hm2_bitfile *bitfile);
 
+    /* Period in ns of the thread that runs the board's read/write functions,
+     * set by the core before each call (0 outside a thread).  Backends with
+     * timeouts relative to the period (hm2_eth) read it. */
+    long period_ns;
+
     /* Backend-private data. */
     void *priv;
     /* Owned by the hostmot2 core: the board registered on this llio (set

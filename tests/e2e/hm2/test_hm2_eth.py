@@ -1,0 +1,151 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""hm2_eth end to end on the virtual 7i96S and 7i92: the real hostmot2 +
+hm2_eth drivers over LBP16/UDP on loopback (vboard --udp), the board's
+LBP16 responder and the Verilated hm2 firmware.  The driver finds the
+board by its LBP16 name, reads the IDROM over UDP, exports the LinuxCNC
+2.9 pin names (hm2_7i96s.0.stepgen.00..., the packet-error pins) and runs
+its servo cycle, one read and one write datagram per period."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from hm2e2e import BUILD, halrun, num, tag, values, vboard
+from test_hm2_sim_load import pin_lines, squeeze
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
+import lbp16  # noqa: E402
+
+HM2_ETH = BUILD / "lib" / "rtlib" / "hm2_eth.so"
+pytestmark = pytest.mark.requires_build(HM2_ETH, BUILD / "bin" / "vboard")
+PFX = "hm2_7i96s.0"
+
+# The 7i96s_d pin report lines LinuxCNC prints for this config (connector
+# names from spec section 16's 7i96 table; functions from
+# hdl/hostmot2/firmware/7i96s/7i96s_d.toml).
+WANT_PINS = [
+    "IO Pin 000 (TB3-01): IOPort",
+    "IO Pin 017 (TB1-02/TB1-03): StepGen #0, pin Step (Output)",
+    "IO Pin 018 (TB1-04/TB1-05): StepGen #0, pin Direction (Output)",
+    "IO Pin 025 (TB2-02/TB2-03): StepGen #4, pin Step (Output)",
+    "IO Pin 027 (TB2-07/TB2-08): Encoder #0, pin A (Input)",
+    "IO Pin 028 (TB2-10/TB2-11): Encoder #0, pin B (Input)",
+    "IO Pin 029 (TB2-13/TB2-14): Encoder #0, pin Index (Input)",
+    "IO Pin 033 (internal): PWMGen #0, pin Out0 (PWM or Up) (Output)",
+    "IO Pin 050 (P1-25/DB25-13): IOPort",
+]
+
+
+# The board and HAL share two busy cores with other tests: the reply
+# timeout is raised from 80 % of the period to 500 ms so that a late
+# scheduling is not a packet error (the tests that count packet errors
+# inject them on purpose).
+TIMEOUT_NS = 500_000_000
+
+
+def load(ip: str, config: str, period_ns: int = 1_000_000, defaults: bool = False) -> str:
+    out = "loadrt hostmot2\n" f'loadrt hm2_eth board_ip={ip} config="{config}"\n'
+    if defaults:
+        out += tag(
+            "defaults",
+            f"{PFX}.packet-read-timeout",
+            f"{PFX}.packet-error-limit",
+            f"{PFX}.packet-error-increment",
+            f"{PFX}.packet-error-decrement",
+        )
+    return out + (
+        f"setp {PFX}.packet-read-timeout {TIMEOUT_NS}\n"
+        f"loadrt threads name1=servo period1={period_ns}\n"
+        f"addf {PFX}.read servo\n"
+        f"addf {PFX}.write servo\n"
+    )
+
+
+@pytest.fixture
+def board(tmp_path: Path) -> Iterator[tuple[vboard.VBoardProcess, str]]:
+    ip = lbp16.unique_loopback()
+    for _ in range(5):
+        try:
+            p = vboard.VBoardProcess(
+                tmp_path / "b.sock", "7i96s", "7i96s_d", args=["--udp", ip, "--udp-tick", "1000"]
+            )
+            break
+        except RuntimeError as e:
+            if "Address already in use" not in str(e):
+                raise
+            ip = lbp16.unique_loopback()
+    try:
+        yield p, ip
+    finally:
+        p.stop()
+        assert "Sanitizer" not in p.stderr_text, p.stderr_text
+
+
+def test_load_pinout_and_pins(tmp_path: Path, board: tuple[vboard.VBoardProcess, str]) -> None:
+    vb, ip = board
+    config = "num_encoders=1 num_pwmgens=1 num_stepgens=5"
+    script = (
+        load(ip, config, defaults=True)
+        + "simrun 20ms\n"
+        + tag(
+            "err",
+            f"{PFX}.packet-error",
+            f"{PFX}.packet-error-level",
+            f"{PFX}.packet-error-exceeded",
+            f"{PFX}.packet-error-total",
+            f"{PFX}.io_error",
+        )
+    )
+    script += f"show pin {PFX}.stepgen.00\n"
+    r = halrun(tmp_path, script)
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    assert "hm2_eth: discovered 7I96S" in out
+    got = pin_lines(out)
+    for line in WANT_PINS:
+        assert squeeze(f"hm2/{PFX}: {line}") in got, line
+    assert len(got) == 51
+    v = values(out)
+    # hm2_eth(9) defaults: 80 % of the period, limit 10, +2 per error, -1 per good cycle
+    assert v["defaults"][:4] == ["80", "10", "2", "1"]
+    assert v["err"][:5] == ["FALSE", "0", "FALSE", "0", "FALSE"]
+    for pin in ("position-cmd", "velocity-fb", "counts", "enable", "position-fb"):
+        assert f"{PFX}.stepgen.00.{pin}" in out
+
+
+def test_servo_cycle_moves_a_stepgen(
+    tmp_path: Path, board: tuple[vboard.VBoardProcess, str]
+) -> None:
+    vb, ip = board
+    config = "num_encoders=0 num_pwmgens=0 num_stepgens=1"
+    script = load(ip, config)
+    script += (
+        f"setp {PFX}.stepgen.00.control-type 1\n"
+        f"setp {PFX}.stepgen.00.position-scale 100\n"
+        f"setp {PFX}.stepgen.00.maxaccel 0\n"
+        f"setp {PFX}.stepgen.00.steplen 2000\n"
+        f"setp {PFX}.stepgen.00.stepspace 2000\n"
+        f"setp {PFX}.stepgen.00.dirsetup 2000\n"
+        f"setp {PFX}.stepgen.00.dirhold 2000\n"
+        f"setp {PFX}.stepgen.00.velocity-cmd 10\n"
+        f"setp {PFX}.stepgen.00.enable 1\n"
+        "simrun 20ms\n"
+    )
+    script += tag("sg", f"{PFX}.stepgen.00.counts", f"{PFX}.packet-error-total")
+    r = halrun(tmp_path, script)
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    v = values(out)
+    # 1000 steps/s; --udp-tick 1000: each servo read runs the board one
+    # period (1 ms), so 20 periods are 20 ms of board time: 20 steps (the
+    # first period only loads the rate, the last steps may be in flight)
+    counts = num(v, "sg", 0)
+    assert 17 <= counts <= 20, out
+    assert num(v, "sg", 1) == 0
+    with vb.client() as c:
+        rising = c.pin(17).rising
+    assert abs(rising - counts) <= 1
