@@ -48,7 +48,7 @@ TIMEOUT_NS = 500_000_000
 
 
 def load(ip: str, config: str, period_ns: int = 1_000_000, defaults: bool = False) -> str:
-    out = "loadrt hostmot2\n" f'loadrt hm2_eth board_ip={ip} config="{config}"\n'
+    out = "loadrt hostmot2\n" f'loadrt hm2_eth board_ip={ip} config="{config}" debug=1\n'
     if defaults:
         out += tag(
             "defaults",
@@ -112,7 +112,7 @@ def test_load_pinout_and_pins(tmp_path: Path, board: tuple[vboard.VBoardProcess,
     v = values(out)
     # hm2_eth(9) defaults: 80 % of the period, limit 10, +2 per error, -1 per good cycle
     assert v["defaults"][:4] == ["80", "10", "2", "1"]
-    assert v["err"][:5] == ["FALSE", "0", "FALSE", "0", "FALSE"]
+    assert v["err"][:5] == ["FALSE", "0", "FALSE", "0", "FALSE"], out
     for pin in ("position-cmd", "velocity-fb", "counts", "enable", "position-fb"):
         assert f"{PFX}.stepgen.00.{pin}" in out
 
@@ -145,7 +145,23 @@ def test_servo_cycle_moves_a_stepgen(
     # first period only loads the rate, the last steps may be in flight)
     counts = num(v, "sg", 0)
     assert 17 <= counts <= 20, out
-    assert num(v, "sg", 1) == 0
+    assert num(v, "sg", 1) == 0, out
     with vb.client() as c:
         rising = c.pin(17).rising
     assert abs(rising - counts) <= 1
+
+
+@pytest.mark.parametrize(
+    "args,text",
+    [
+        ("board_ip=192.168.1", "board_ip '192.168.1' is not an IPv4 address"),
+        ("", "no board_ip given"),
+        ("board_ip=127.250.250.250", "no board answers at 127.250.250.250 (UDP port 27181)"),
+    ],
+)
+def test_bad_board_ip(tmp_path: Path, args: str, text: str) -> None:
+    r = halrun(tmp_path, f"loadrt hostmot2\nloadrt hm2_eth {args}\n")
+    out = r.stdout + r.stderr
+    assert r.returncode != 0, out
+    assert text in out, out
+    assert "hm2_eth: driver unloaded" in out or "insmod for hm2_eth failed" in out

@@ -17,6 +17,7 @@
 
 #include "hal.h"
 #include "hm2/hostmot2.h"
+#include "hm2_board_module.h"
 #include "hm2_eth_llio.h"
 #include "rtapi.h"
 
@@ -39,41 +40,32 @@ struct he_slot {
     int registered;
 };
 
-static struct he_slot *slots;
-static int comp_id = -1;
+/* The module's boards (rtapi_app_exit finds them again here). */
+static struct hm2_board_module mod = {NULL, -1};
 
 static void he_log(void *ctx, int level, const char *line)
 {
-    (void)ctx;
-    switch (level) {
-    case HM2_PRINT: rtapi_print("%s\n", line); break;
-    case HM2_ERR: rtapi_print_msg(RTAPI_MSG_ERR, "%s\n", line); break;
-    case HM2_WARN: rtapi_print_msg(RTAPI_MSG_WARN, "%s\n", line); break;
-    case HM2_INFO: rtapi_print_msg(RTAPI_MSG_INFO, "%s\n", line); break;
-    default:
-        if (debug)
-            rtapi_print_msg(RTAPI_MSG_ERR, "%s\n", line);
-        break;
-    }
+    if (level >= HM2_DBG && debug)
+        level = HM2_ERR;
+    hm2_board_rtapi_log(ctx, level, line);
 }
 
-static void cleanup(void)
+static void release_one(void *slots, int i)
 {
-    if (!slots)
-        return;
-    for (int i = 0; i < NB; i++) {
-        struct he_slot *s = &slots[i];
-        if (s->registered)
-            hm2_unregister(&s->board.llio);
-        if (s->set_up)
-            hm2_eth_teardown(&s->board, false);
-    }
-    free(slots);
-    slots = NULL;
+    struct he_slot *s = &((struct he_slot *)slots)[i];
+    if (s->registered)
+        hm2_unregister(&s->board.llio);
+    if (s->set_up)
+        hm2_eth_teardown(&s->board, false);
+}
+
+static int board_wanted(int i)
+{
+    return board_ip[i] && board_ip[i][0];
 }
 
 /* hm2_<board>.<n>: n counts the boards of the same type */
-static int type_index(int i)
+static int type_index(const struct he_slot *slots, int i)
 {
     int n = 0;
     for (int j = 0; j < i; j++)
@@ -88,7 +80,7 @@ struct he_hal {
     hal_s32_t limit, increment, decrement, read_timeout;
 };
 
-static int export_errpins(struct hm2_eth_board *b)
+static int export_errpins(struct hm2_eth_board *b, int comp_id)
 {
     const char *n = b->llio.name;
     struct he_hal *h = hal_malloc(sizeof(*h));
@@ -128,16 +120,16 @@ static int export_errpins(struct hm2_eth_board *b)
     return 0;
 }
 
-static int setup_one(int i)
+static int setup_one(void *slots, int i, int comp_id)
 {
-    struct he_slot *s = &slots[i];
+    struct he_slot *s = &((struct he_slot *)slots)[i];
     int r = hm2_eth_setup(&s->board, board_ip[i], 0, he_log, NULL);
     if (r)
         return r;
     s->set_up = 1;
-    hm2_board_fill_llio(s->board.info, type_index(i), &s->board.llio);
+    hm2_board_fill_llio(s->board.info, type_index(slots, i), &s->board.llio);
     s->board.llio.comp_id = comp_id;
-    r = export_errpins(&s->board);
+    r = export_errpins(&s->board, comp_id);
     if (r)
         return r;
     r = hm2_register(&s->board.llio, config[i]);
@@ -150,44 +142,20 @@ static int setup_one(int i)
     return 0;
 }
 
+static const struct hm2_board_module_desc desc = {
+    .name = "hm2_eth",
+    .none_given = "no board_ip given (board_ip=192.168.1.121[,IP...])",
+    .max_boards = NB, .slot_size = sizeof(struct he_slot),
+    .wanted = board_wanted, .setup = setup_one, .release = release_one,
+};
+
 int rtapi_app_main(void)
 {
-    int r = 0, n = 0;
     rtapi_print("hm2_eth: loading Mesa AnyIO HostMot2 ethernet driver version 0.2\n");
-    comp_id = hal_init("hm2_eth");
-    if (comp_id < 0)
-        return comp_id;
-    slots = calloc(NB, sizeof(*slots));
-    if (!slots) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_eth: out of memory\n");
-        r = -ENOMEM;
-        goto fail;
-    }
-    for (int i = 0; i < NB && board_ip[i] && board_ip[i][0]; i++) {
-        r = setup_one(i);
-        if (r)
-            goto fail;
-        n++;
-    }
-    if (n == 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_eth: no board_ip given (board_ip=192.168.1.121)\n");
-        r = -EINVAL;
-        goto fail;
-    }
-    hal_ready(comp_id);
-    return 0;
-fail:
-    cleanup();
-    hal_exit(comp_id);
-    comp_id = -1;
-    return r;
+    return hm2_board_module_load(&mod, &desc);
 }
 
 void rtapi_app_exit(void)
 {
-    cleanup();
-    if (comp_id >= 0)
-        hal_exit(comp_id);
-    comp_id = -1;
-    rtapi_print("hm2_eth: HostMot2 ethernet driver unloaded\n");
+    hm2_board_module_unload(&mod, &desc);
 }

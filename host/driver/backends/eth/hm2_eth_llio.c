@@ -19,6 +19,7 @@
 #define SYNC_TIMEOUT_US 100000
 #define SYNC_TRIES 3
 #define MIN_TIMEOUT_NS 100000L
+#define LOAD_TIME_READ_TIMEOUT_NS 1000000000L /* a servo read outside a thread */
 #define DEFAULT_PERIOD_NS 1000000L
 
 static void logf_(struct hm2_eth_board *b, int level, const char *fmt, ...)
@@ -267,13 +268,14 @@ static int eth_send_queued_reads(hm2_llio_t *llio)
     int r = send_pkt(b, &b->rpkt);
     b->stats.read_packets++;
     bool lost = true, wlost = false;
+    long to = 0;
     struct lbp16_reply_check c;
     if (r == 0) {
         /* outside a thread (the core's first transfers at load time) a
          * read may wait as long as a synchronous one */
-        long to = llio->period_ns > 0
-                      ? hm2_eth_read_timeout_ns(*b->pins->read_timeout, llio->period_ns)
-                      : SYNC_TIMEOUT_US * 1000L;
+        to = llio->period_ns > 0
+                 ? hm2_eth_read_timeout_ns(*b->pins->read_timeout, llio->period_ns)
+                 : LOAD_TIME_READ_TIMEOUT_NS;
         int64_t deadline = mono_ns() + to;
         for (;;) {
             ssize_t n = recv_until(b, buf, sizeof(buf), deadline);
@@ -295,8 +297,11 @@ static int eth_send_queued_reads(hm2_llio_t *llio)
             off += b->rq[i].size;
         }
         wlost = c.write_seq != b->write_seq;
-        if (wlost)
+        if (wlost) {
             b->stats.write_losses++;
+            logf_(b, HM2_DBG, "hm2_eth: %s: write datagram %u lost (the board saw %u)", b->ip,
+                  (unsigned)b->write_seq, (unsigned)c.write_seq);
+        }
         if (b->silent)
             logf_(b, HM2_PRINT, "hm2_eth: %s: the board answers again", b->ip);
         b->silent = false;
@@ -306,7 +311,7 @@ static int eth_send_queued_reads(hm2_llio_t *llio)
             logf_(b, HM2_ERR,
                   "hm2_eth: %s: no reply to the servo-cycle read within %ld us%s%s; keeping the "
                   "last data (reported once until it answers again)",
-                  b->ip, hm2_eth_read_timeout_ns(*b->pins->read_timeout, llio->period_ns) / 1000,
+                  b->ip, to / 1000,
                   r ? ": " : "", r ? strerror(-r) : "");
         b->silent = true;
     }
