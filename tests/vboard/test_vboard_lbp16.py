@@ -212,7 +212,7 @@ def test_flash_id_erase_write_read(eth96: tuple[vboard.VBoardProcess, Lbp16Clien
         (["--board", "7i96s", "--udp", "localhost"], "want an IPv4 address"),
         (["--board", "7i96s", "--udp-tick", "1000"], "--udp-tick needs --udp"),
         (["--board", "7i96s", "--udp", "127.0.0.1:0", "--udp-tick", "0"], "bad --udp-tick '0'"),
-        (["--board", "5i20", "--udp", "127.0.0.1:0"], "--udp and --flash are for Ethernet boards"),
+        (["--board", "5i20", "--udp", "127.0.0.1:0"], "--udp is for Ethernet boards"),
         (["--board", "7i92"], "--socket and --board are required"),
         (["--board", "7i92", "--udp", "192.0.2.1"], "cannot listen for LBP16 on UDP 192.0.2.1"),
     ],
@@ -223,3 +223,75 @@ def test_command_line_errors(args: list[str], text: str) -> None:
     )
     assert r.returncode != 0
     assert text in r.stderr, r.stderr
+
+
+def flash_write(c: Lbp16Client, addr: int, data: bytes) -> None:
+    """Erase the 64 KiB sectors under [addr, addr+len) and program data (spec 17.3 space 3)."""
+    key = lbp16.write(lbp16.SPACE_STATUS, 2, 0x1A, [0x5A03])
+    for sector in range(addr & ~0xFFFF, addr + len(data), 0x10000):
+        assert c.no_reply(key + lbp16.write(3, 4, 0, [sector]) + lbp16.write(3, 4, 0xC, [0]))
+    data += b"\xff" * (-len(data) % 4)
+    for off in range(0, len(data), 256):
+        chunk = data[off : off + 256]
+        words = list(struct.unpack(f"<{len(chunk) // 4}I", chunk))
+        pkt = key + lbp16.write(3, 4, 0, [addr + off]) + lbp16.write(3, 4, 4, words, inc=False)
+        assert c.no_reply(pkt, wait=0.05)
+
+
+def flash_read(c: Lbp16Client, addr: int, n: int) -> bytes:
+    out = b""
+    c.no_reply(lbp16.write(3, 4, 0, [addr]), wait=0.05)
+    while len(out) < n:
+        out += struct.pack("<64I", *c.words32(3, 4, 64, inc=False))
+    return out[:n]
+
+
+def reload(c: Lbp16Client) -> None:
+    """The ICAP word sequence ending in IPROG, written to space 6 0x1E."""
+    icap = [0xFFFF, 0xAA99, 0x5566, 0x30A1, 0x000E]
+    assert c.no_reply(lbp16.write(lbp16.SPACE_STATUS, 2, 0x1E, icap, inc=False))
+
+
+def test_blank_flash_then_firmware_written_over_lbp16(sockdir: Path, tmp_path: Path) -> None:
+    """A board with an erased flash stays blank (the hm2 space does not
+    answer); the 7i96s_d .BIT written to the user area through space 3 and
+    a reload bring it up; the flash file keeps it for the next start."""
+    bit = (vboard.build_dir() / "lib" / "firmware" / "hm2" / "7i96s" / "7i96s_d.BIT").read_bytes()
+    flash = tmp_path / "flash.bin"
+    p = start(sockdir, "7i96s", "", lbp16.unique_loopback(), "--flash", str(flash))
+    ip = p.ready_line.split("udp ")[1].split(":")[0]
+    try:
+        assert "blank" in p.ready_line
+        assert flash.stat().st_size == 4 << 20
+        with Lbp16Client(ip) as c:
+            assert c.board_name()[:5] == b"7I96S"  # the Ethernet engine works while blank
+            assert c.no_reply(lbp16.read(0, 4, 0x0100, 1))
+            flash_write(c, 0x80000, bit)
+            assert flash_read(c, 0x80000, len(bit)) == bit
+            reload(c)
+            assert c.words32(0, 0x0100, 1) == [IDROM_COOKIE]
+    finally:
+        stop_clean(p)
+    assert flash.read_bytes()[0x80000 : 0x80000 + len(bit)] == bit
+    p = start(sockdir, "7i96s", "", lbp16.unique_loopback(), "--flash", str(flash))
+    try:
+        assert "7i96s_d" in p.ready_line
+    finally:
+        stop_clean(p)
+
+
+def test_corrupt_user_image_falls_back(sockdir: Path, tmp_path: Path) -> None:
+    """--firmware programs a new flash (fallback and user areas); a user
+    area overwritten with junk makes the reload use the fallback image."""
+    flash = tmp_path / "flash.bin"
+    p = start(sockdir, "7i96s", "7i96s_d", lbp16.unique_loopback(), "--flash", str(flash))
+    ip = p.ready_line.split("udp ")[1].split(":")[0]
+    try:
+        with Lbp16Client(ip) as c:
+            flash_write(c, 0x80000, b"not a bitfile")
+            reload(c)
+            assert c.words32(0, 0x0100, 1) == [IDROM_COOKIE]
+    finally:
+        stop_clean(p)
+    # the flash file decides at the next start: --firmware does not rewrite it
+    assert flash.read_bytes()[0x80000:0x8000D] == b"not a bitfile"
