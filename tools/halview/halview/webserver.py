@@ -287,6 +287,10 @@ class Server:
             self.opts.port,
             process_request=self.process_request,
             max_size=2**22,
+            # a page (or an HTTP client) that does not answer the closing
+            # handshake holds the server's exit at most this long, well
+            # inside the 2 s that the end of a session grants a component
+            close_timeout=0.5,
         ) as server:
             sock = next(iter(server.sockets))
             host, port = sock.getsockname()[:2]
