@@ -72,13 +72,13 @@ PY
 echo "5i20 SVST8_4, $(nproc) CPUs; anchors: real time = 33.333 M ClockLow cycles/s;"
 echo "read+write goal <= 20 us (hm2_eth ~100 us, SoC bridge 59 us)"
 start_board
-printf "simulation, idle:               "; speed 20
+printf "simulation, idle:               "; speed 60
 stop_board
 VBOARD_EVAL=full start_board
-printf "idle, VBOARD_EVAL=full:         "; speed 20
+printf "idle, VBOARD_EVAL=full:         "; speed 60
 stop_board
 start_board
-printf "simulation, 4 stepgens running: "; speed 20 steps
+printf "simulation, 4 stepgens running: "; speed 60 steps
 printf "servo read+write, no advance:   "; "$bench" "$dir/vb.sock" servo 2000 0
 printf "servo read+write, 1 ms advance: "; "$bench" "$dir/vb.sock" servo 30 1000000
 printf "protocol alone (HELLO):         "; "$bench" "$dir/vb.sock" hello 5000
@@ -94,5 +94,5 @@ stop_board
 printf "machine floor (socketpair):     "; "$bench" pingpong 5000
 # The 5i25's 7I76x2 has no ClockHigh logic (no PWM): only ClockLow edges run.
 BOARD=5i25 FW=7I76x2 start_board
-printf "5i25 7I76x2 simulation, idle:   "; speed 20
+printf "5i25 7I76x2 simulation, idle:   "; speed 100
 stop_board

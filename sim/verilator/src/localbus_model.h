@@ -23,6 +23,16 @@
 // queued message; a running waveform dump uses V::eval() throughout, and
 // so does every evaluation with VBOARD_EVAL=full in the environment (for
 // bench/vboard's before/after figure).
+//
+// Falling edges.  The firmware reacts to rising edges only (the build
+// checks its sources for `negedge`: VB_FIRMWARE_USES_NEGEDGE), so the
+// evaluation after a clock falls would only record the new clock levels in
+// the scheduler's edge detectors and settle combinational logic that the
+// next evaluation settles again before any flip-flop sees it.  The model
+// writes those levels itself instead (the detectors are the root's
+// __Vtrigprevexpr___TOP__clk_{high,low}__0, found at compile time; a
+// firmware without them, or a running dump, still evaluates): +9 % on the
+// 5i20 SVST8_4.
 #ifndef VBOARD_LOCALBUS_MODEL_H
 #define VBOARD_LOCALBUS_MODEL_H
 
@@ -30,6 +40,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <type_traits>
 
 #include <unistd.h>
 
@@ -66,6 +77,13 @@ template <std::size_t N> inline void get(const VlWide<N> &d, uint32_t *w)
         w[i] = d[i];
 }
 } // namespace port
+
+// Whether the Verilated root R has edge detectors for both clocks.
+template <class R, class = void> struct HasClockDetectors : std::false_type {};
+template <class R>
+struct HasClockDetectors<R, std::void_t<decltype(R::__Vtrigprevexpr___TOP__clk_high__0),
+                                        decltype(R::__Vtrigprevexpr___TOP__clk_low__0)>>
+    : std::true_type {};
 
 template <class V, auto RootEval> class LbModel final : public LbModelBase {
   public:
@@ -252,6 +270,23 @@ template <class V, auto RootEval> class LbModel final : public LbModelBase {
         since_flush_ = 0;
     }
 
+    // After a clock fell: record the levels in the edge detectors, or
+    // evaluate (see "Falling edges" at the top).
+    void clocks_fell()
+    {
+        using Root = std::remove_pointer_t<decltype(m_->rootp)>;
+#ifndef VB_FIRMWARE_USES_NEGEDGE
+        if constexpr (HasClockDetectors<Root>::value) {
+            if (!vcd_ && !full_eval_) {
+                m_->rootp->__Vtrigprevexpr___TOP__clk_high__0 = m_->clk_high;
+                m_->rootp->__Vtrigprevexpr___TOP__clk_low__0 = m_->clk_low;
+                return;
+            }
+        }
+#endif
+        eval();
+    }
+
     // One ClockHigh cycle: rising edge at next_edge_, falling edge Th/2 later.
     void edge()
     {
@@ -272,7 +307,7 @@ template <class V, auto RootEval> class LbModel final : public LbModelBase {
         m_->clk_high = 0;
         if (phase == (ratio_ - 1) / 2)
             m_->clk_low = 0;
-        eval();
+        clocks_fell();
         if (vcd_)
             vcd_->dump(t * 1000 + th_ * 500);
         k_++;
