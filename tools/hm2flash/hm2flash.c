@@ -17,6 +17,7 @@
 #include "hm2/boards.h"
 #include "hm2/cfgflash.h"
 #include "hm2flash.h"
+#include "jtag_cmd.h"
 #include "program.h"
 
 #define BIT_MAX (16u << 20)
@@ -28,11 +29,12 @@ enum cmd {
     CMD_BACKUP,
     CMD_RELOAD,
     CMD_INFO_FILE,
-    CMD_PROGRAM
+    CMD_PROGRAM,
+    CMD_SCAN
 };
 
 struct opts {
-    const char *device, *addr, *file;
+    const char *device, *addr, *file, *jtag;
     enum cmd cmd;
     int ncmds;
     int fallback, fix_boot, no_verify, verbose;
@@ -48,11 +50,14 @@ static void usage(FILE *f)
             "  hm2flash --device NAME --addr SOURCE [options] --backup-flash FILE\n"
             "  hm2flash --device NAME --addr SOURCE [options] --reload\n"
             "  hm2flash --device NAME --addr SOURCE --program FILE (.BIT; .rbf for pluto)\n"
+            "  hm2flash --jtag CABLE --scan\n"
+            "  hm2flash --jtag CABLE --program FILE.bit\n"
             "  hm2flash --info FILE.bit\n"
             "  hm2flash --help\n"
             "SOURCE: pci:[ADDR] (a Mesa PCI board, the default), sim:SOCKET (a virtual\n"
             "        board, bin/vboard --socket SOCKET); for the\n"
             "        EPP boards (7i43, pluto) any EPP port: ppdev:/dev/parport0, raw:0x378, ...\n"
+            "CABLE: ftdi (0403:6010), ftdi:VID:PID or ftdi:VID:PID:SERIAL (FTDI MPSSE)\n"
             "Options:\n"
             "  --fallback          use the fallback area of the flash\n"
             "  --fix-boot-block    write a boot block when --write finds none\n"
@@ -76,7 +81,8 @@ static int parse(int argc, char **argv, struct opts *o)
         {"info", required_argument, 0, 'i'},   {"fallback", no_argument, 0, 'f'},
         {"fix-boot-block", no_argument, 0, 'x'}, {"no-auto-verify", no_argument, 0, 'n'},
         {"verbose", no_argument, 0, 'v'},      {"help", no_argument, 0, 'h'},
-        {"program", required_argument, 0, 'p'},
+        {"program", required_argument, 0, 'p'}, {"jtag", required_argument, 0, 'j'},
+        {"scan", no_argument, 0, 's'},
         {0, 0, 0, 0}};
     memset(o, 0, sizeof(*o));
     o->cmd = CMD_INFO_BOARD;
@@ -91,6 +97,8 @@ static int parse(int argc, char **argv, struct opts *o)
         case 'r': set_cmd(o, CMD_RELOAD, NULL); break;
         case 'i': set_cmd(o, CMD_INFO_FILE, optarg); break;
         case 'p': set_cmd(o, CMD_PROGRAM, optarg); break;
+        case 'j': o->jtag = optarg; break;
+        case 's': set_cmd(o, CMD_SCAN, NULL); break;
         case 'f': o->fallback = 1; break;
         case 'x': o->fix_boot = 1; break;
         case 'n': o->no_verify = 1; break;
@@ -108,7 +116,15 @@ static int parse(int argc, char **argv, struct opts *o)
                         "--reload, --program, --info)\n");
         return 2;
     }
-    if (o->cmd != CMD_INFO_FILE && !o->device) {
+    if (o->jtag && o->cmd != CMD_SCAN && o->cmd != CMD_PROGRAM) {
+        fprintf(stderr, "hm2flash: --jtag goes with --scan or --program FILE\n");
+        return 2;
+    }
+    if (o->cmd == CMD_SCAN && !o->jtag) {
+        fprintf(stderr, "hm2flash: --scan needs --jtag CABLE\n");
+        return 2;
+    }
+    if (o->cmd != CMD_INFO_FILE && !o->jtag && !o->device) {
         fprintf(stderr, "hm2flash: --device NAME is required (e.g. --device 5i25)\n");
         return 2;
     }
@@ -356,6 +372,9 @@ int main(int argc, char **argv)
         return rc;
     if (o.cmd == CMD_INFO_FILE)
         return cmd_info_file(&o);
+    if (o.jtag)
+        return o.cmd == CMD_SCAN ? hm2flash_jtag_scan(o.jtag)
+                                 : hm2flash_jtag_program(o.jtag, o.file);
     if (o.cmd == CMD_PROGRAM) {
         struct program_req q = {hm2_board_lookup(o.device), o.addr, o.file};
         if (!q.board && strcasecmp(o.device, "pluto") != 0) {

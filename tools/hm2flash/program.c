@@ -11,8 +11,8 @@
  *   Pluto-P (pluto): the EP1K10's passive serial configuration over EPP
  *   control lines (an .rbf file), then a probe of the running firmware.
  *
- * Flash-configured boards (5i25, 6i25) are configured through JTAG, which
- * this program does not have yet: --write and --reload are their way.
+ * Flash-configured boards (5i25, 6i25) are configured through JTAG
+ * (--jtag, jtag_cmd.c), or written with --write and --reload.
  */
 #define _GNU_SOURCE
 #include "program.h"
@@ -281,8 +281,8 @@ int hm2flash_program(const struct program_req *q)
         return program_pluto(q);
     if (!q->board->programmable) {
         fprintf(stderr, "hm2flash: the %s configures itself from its flash: volatile "
-                        "programming needs JTAG, which hm2flash does not have yet; use --write "
-                        "FILE then --reload\n", q->board->name);
+                        "programming needs JTAG (--jtag CABLE --program FILE); or --write FILE "
+                        "then --reload\n", q->board->name);
         return 1;
     }
     if (strncasecmp(q->board->name, "7i43", 4) == 0)

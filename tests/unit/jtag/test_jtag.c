@@ -8,7 +8,12 @@
  * and drives, pin by pin, a chain of TAPs that follow the IEEE 1149.1 state
  * diagram (written out here independently of the engine's table), with
  * 6-bit instruction registers (capture value 0b000001), IDCODE (0x09) and
- * BYPASS (0x3F), IDCODE selected at Test-Logic-Reset.
+ * BYPASS (0x3F), IDCODE selected at Test-Logic-Reset.  A device also
+ * models Xilinx configuration (UG380/UG332): JPROGRAM (0x0B) clears it,
+ * CFG_IN (0x05) takes the bits shifted through Shift-DR, JSTART (0x0C) and
+ * idle clocks start it: DONE comes up when the data held the sync word
+ * 0xAA995566, else INIT goes low (CRC error).  The IR capture is
+ * 0b0[DONE][INIT]001... as on the parts: bit 5 DONE, bit 4 INIT, bits 1..0 01.
  */
 #include <errno.h>
 #include <stdint.h>
@@ -19,6 +24,7 @@
 #include "check.h"
 #include "hm2/jtag.h"
 #include "hm2/jtag_mpsse.h"
+#include "hm2/jtag_xilinx.h"
 
 /* ---- TAP model ---- */
 
@@ -55,7 +61,24 @@ struct tap {
     uint32_t ir, ir_shift;
     uint64_t dr_shift;
     int dr_len;
+    /* configuration */
+    uint8_t *cfg;    /* bits received through CFG_IN, one per byte */
+    size_t ncfg, capcfg;
+    int done, init, started, idle_after_start;
 };
+
+static int tap_cfg_valid(const struct tap *t)
+{
+    /* the sync word, MSB first, anywhere in the bit stream */
+    const uint32_t sync = 0xAA995566u;
+    uint32_t w = 0;
+    for (size_t i = 0; i < t->ncfg; i++) {
+        w = (w << 1) | t->cfg[i];
+        if (i >= 31 && w == sync)
+            return 1;
+    }
+    return 0;
+}
 
 struct chain {
     struct tap dev[4]; /* dev[0] nearest TDI */
@@ -97,6 +120,13 @@ static int chain_clock(struct chain *c, int tms, int tdi)
         } else if (c->state == SDR) {
             out = (int)(t->dr_shift & 1u);
             t->dr_shift = (t->dr_shift >> 1) | ((uint64_t)in << (t->dr_len - 1));
+            if (t->ir == 0x05u) {
+                if (t->ncfg == t->capcfg) {
+                    t->capcfg = t->capcfg ? 2 * t->capcfg : 4096;
+                    t->cfg = realloc(t->cfg, t->capcfg);
+                }
+                t->cfg[t->ncfg++] = (uint8_t)in;
+            }
         } else {
             out = 1;
         }
@@ -108,9 +138,24 @@ static int chain_clock(struct chain *c, int tms, int tdi)
         if (next == TLR)
             tap_reset_ir(t);
         if (next == CIR)
-            t->ir_shift = 0x01; /* capture pattern ...01 */
-        if (next == UIR)
+            t->ir_shift = 0x01u | (t->init ? 0x10u : 0) | (t->done ? 0x20u : 0);
+        if (next == UIR) {
             t->ir = t->ir_shift & 0x3Fu;
+            if (t->ir == 0x0Bu) { /* JPROGRAM */
+                t->ncfg = 0;
+                t->done = 0;
+                t->init = 1;
+                t->started = 0;
+            }
+            if (t->ir == 0x0Cu) { /* JSTART */
+                t->started = 1;
+                t->idle_after_start = 0;
+            }
+        }
+        if (c->state == RTI && t->started && ++t->idle_after_start == 16) {
+            t->done = tap_cfg_valid(t);
+            t->init = t->done;
+        }
         if (next == CDR) {
             int idc = t->ir == IR_IDCODE && t->idcode;
             t->dr_len = idc ? 32 : 1;
@@ -258,6 +303,7 @@ static void rig_open(struct rig *r, const uint32_t *ids, int n)
     r->chain.state = RTI; /* not reset yet: the engine must reset */
     for (int i = 0; i < n; i++) {
         r->chain.dev[i].idcode = ids[i];
+        r->chain.dev[i].init = 1;
         tap_reset_ir(&r->chain.dev[i]);
     }
     r->ftdi.chain = &r->chain;
@@ -340,7 +386,7 @@ static void test_ir_dr_scans(void)
     uint16_t ir = (uint16_t)(IR_BYPASS | (IR_IDCODE << 6));
     uint8_t in[2] = {(uint8_t)ir, (uint8_t)(ir >> 8)}, out[2] = {0, 0};
     CHECK_EQ_INT(jtag_scan_ir(&r.j, in, out, 12, JTAG_RTI), 0);
-    CHECK_EQ_INT(out[0] | (out[1] << 8), 0x041); /* both capture 000001 */
+    CHECK_EQ_INT(out[0] | (out[1] << 8), 0x451); /* both capture 010001: INIT, ...01 */
     CHECK_EQ_INT(r.chain.dev[1].ir, IR_BYPASS);
     CHECK_EQ_INT(r.chain.dev[0].ir, IR_IDCODE);
     uint8_t din[5] = {0}, dout[5] = {0};
@@ -408,6 +454,64 @@ static void test_cable_vanishes(void)
     mpsse_close(&r.m);
 }
 
+static void rig_close(struct rig *r)
+{
+    for (int i = 0; i < r->chain.n; i++)
+        free(r->chain.dev[i].cfg);
+    mpsse_close(&r->m);
+}
+
+static void check_received(const struct tap *t, const uint8_t *bits, size_t len, size_t lead)
+{
+    CHECK_EQ_INT(t->ncfg, len * 8 + lead);
+    int same = t->ncfg == len * 8 + lead;
+    for (size_t i = 0; same && i < lead; i++)
+        same = t->cfg[i] == 0;
+    for (size_t i = 0; same && i < len * 8; i++)
+        same = t->cfg[lead + i] == ((bits[i / 8] >> (7 - i % 8)) & 1);
+    CHECK(same);
+}
+
+static void test_xilinx_program(void)
+{
+    uint8_t bits[300];
+    for (size_t i = 0; i < sizeof(bits); i++)
+        bits[i] = (uint8_t)(i * 37 + 11);
+    memcpy(bits + 16, "\xAA\x99\x55\x66", 4);
+    for (int pos = 0; pos < 3; pos++) {
+        struct rig r;
+        uint32_t ids[] = {0x0141C093u, 0x24001093u, 0x01414093u}; /* dev[0] nearest TDI */
+        rig_open(&r, ids, 3);
+        uint8_t st = 0;
+        CHECK_EQ_INT(jtag_xilinx_program(&r.j, pos, 3, bits, sizeof(bits), &st), 0);
+        CHECK_EQ_INT(st & 0x33, 0x31); /* DONE, INIT, ...01 */
+        /* device `pos` counted from TDO is dev[2 - pos]; the BYPASS devices
+         * between TDI and it put one zero bit each in front */
+        const struct tap *t = &r.chain.dev[2 - pos];
+        check_received(t, bits, sizeof(bits), (size_t)(2 - pos));
+        CHECK(t->done);
+        for (int k = 0; k < 3; k++)
+            if (k != 2 - pos)
+                CHECK_EQ_INT(r.chain.dev[k].ncfg, 0);
+        rig_close(&r);
+    }
+}
+
+static void test_xilinx_bad_bitstream(void)
+{
+    struct rig r;
+    uint32_t ids[] = {0x24001093u};
+    rig_open(&r, ids, 1);
+    uint8_t bits[64];
+    memset(bits, 0x5A, sizeof(bits)); /* no sync word */
+    uint8_t st = 0xFF;
+    CHECK_EQ_INT(jtag_xilinx_program(&r.j, 0, 1, bits, sizeof(bits), &st), -EIO);
+    CHECK_EQ_INT(st & 0x30, 0x00);
+    CHECK(strstr(r.j.err, "did not assert DONE") && strstr(r.j.err, "CRC error"));
+    CHECK_EQ_INT(jtag_xilinx_program(&r.j, 1, 1, bits, sizeof(bits), &st), -EINVAL);
+    rig_close(&r);
+}
+
 int main(void)
 {
     RUN(test_tms_paths);
@@ -417,5 +521,7 @@ int main(void)
     RUN(test_long_scan_cost);
     RUN(test_stuck_tdo);
     RUN(test_cable_vanishes);
+    RUN(test_xilinx_program);
+    RUN(test_xilinx_bad_bitstream);
     return check_summary();
 }
