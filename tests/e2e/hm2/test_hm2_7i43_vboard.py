@@ -48,9 +48,16 @@ def test_load_through_the_cpld_and_pinout(tmp_path: Path, blank: vboard.VBoardPr
     sock = Path(blank.socket_path)
     assert hello(sock).state == vboard.STATE_BLANK
     config = "firmware=hm2/7i43/SVST4_4.BIT num_encoders=2 num_pwmgens=1 num_stepgens=3"
-    r = halrun(tmp_path, load(sock, config) + "simrun 2ms\n")
+    r = halrun(tmp_path, load(sock, config) + "simrun 2ms\n" + tag("wd", f"{PFX}.watchdog.has_bit"))
     out = r.stdout + r.stderr
     assert r.returncode == 0, out
+    # Mesa's 7i43 firmwares list their TranslationRAM (GTag 11, spec 9.7);
+    # the driver leaves it alone, as LinuxCNC 2.9 does with modules it has
+    # no code for
+    assert "MD 5: 1x TranslationRAM v0: ignored" in out, out
+    # the firmware's watchdog bites at configuration (Timer powers up at 0,
+    # like Mesa's); the driver's load sequence clears that bite
+    assert values(out)["wd"] == ["FALSE"], out
     want = [
         squeeze(s) for s in expected_pin_lines("7i43", "PIN_SVST4_4_48.csv", {4: 2, 6: 1, 5: 3})
     ]
