@@ -4,7 +4,9 @@
 # the Pluto-P with the Verilated pluto_servo and pluto_step firmwares
 # (pluto_board.cpp) and their firmware files $HM_FIRMWARE_DIR/<fw>.rbf, and
 # the 7i43 with the Verilated hm2 EPP firmwares (hm2_epp_board.cpp; their
-# .BIT files and fwinfo headers come from the main CMakeLists).
+# .BIT files and fwinfo headers come from the main CMakeLists).  Both are
+# EppFpgaBoards (epp_fpga_board.cpp: a Verilated firmware behind the port of
+# epp_port_board.cpp).
 set(VB_EPP_DIR ${CMAKE_CURRENT_SOURCE_DIR}/epp)
 file(GLOB VB_PLUTO_HDL CONFIGURE_DEPENDS ${VB_HDL}/pluto/*.v ${VB_HDL}/common/*.v)
 set(VB_PLUTO_RBF "")
@@ -35,6 +37,6 @@ foreach(fw svst4_4 sv8)
         DEPENDS ${gen}/${top}_inc.v ${VB_HDL_SOURCES})
     list(APPEND VBOARD_LIBS V${top})
 endforeach()
-list(APPEND VBOARD_SOURCES ${VB_EPP_DIR}/epp_port_board.cpp ${VB_EPP_DIR}/pluto_board.cpp
-                           ${VB_EPP_DIR}/hm2_epp_board.cpp)
+list(APPEND VBOARD_SOURCES ${VB_EPP_DIR}/epp_port_board.cpp ${VB_EPP_DIR}/epp_fpga_board.cpp
+                           ${VB_EPP_DIR}/pluto_board.cpp ${VB_EPP_DIR}/hm2_epp_board.cpp)
 list(APPEND VBOARD_FACTORIES vb_factory_pluto vb_factory_hm2_epp)

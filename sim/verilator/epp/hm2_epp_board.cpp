@@ -20,17 +20,15 @@
 // Pins are the IDROM's I/O pins 0..47 (P4 = 0..23, P3 = 24..47).
 #include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "epp_port_board.h"
+#include "epp_fpga_board.h"
 #include "fwimage.h"
 #include "fwinfo.h"
 #include "fwinfo_hm2_7i43_sv8.h"
 #include "fwinfo_hm2_7i43_svst4_4.h"
-#include "verilated.h"
 #include "Vhm2_7i43_sv8.h"
 #include "Vhm2_7i43_svst4_4.h"
 
@@ -39,78 +37,45 @@ namespace {
 
 constexpr uint32_t kIoWidth = 48;
 
-struct EppIn {
-    uint8_t d = 0xFF;
-    bool nwrite = true, ndatastr = true, naddrstr = true;
-    uint64_t io_in = ~0ull;
-};
-struct EppOut {
-    uint8_t d = 0;
-    bool d_oe = false, nwait = false, reconfig = false;
-    uint64_t io_out = 0, io_oe = 0;
-};
-
-class Hm2EppModel {
+// One ClockHigh period per clock(); ClockLow rises every `ratio` of them.
+template <class V> class Hm2EppModelT final : public EppFpgaModelT<V> {
   public:
-    virtual ~Hm2EppModel() = default;
-    // One ClockHigh period; ClockLow rises every `ratio` of them.
-    virtual void clock(const EppIn &in, EppOut &out) = 0;
-};
-
-template <class V> class Hm2EppModelT final : public Hm2EppModel {
-  public:
-    explicit Hm2EppModelT(uint32_t ratio) : ratio_(ratio), ctx_(std::make_unique<VerilatedContext>())
+    explicit Hm2EppModelT(uint32_t ratio) : EppFpgaModelT<V>("hm2"), ratio_(ratio)
     {
-        m_ = std::make_unique<V>(ctx_.get(), "hm2");
-        EppIn idle;
-        EppOut o;
-        m_->rst = 1;
-        for (uint32_t i = 0; i < 4 * ratio_; i++)
-            clock(idle, o);
-        m_->rst = 0;
-        // start-up: the design runs a few ClockLow cycles before the host
-        // can reach it (the hm2 watchdog's power-up bite is over then)
-        for (uint32_t i = 0; i < 4 * ratio_; i++)
-            clock(idle, o);
+        // start-up: the design runs a few ClockLow cycles after reset before
+        // the host can reach it (the hm2 watchdog's power-up bite is over then)
+        this->reset(4 * ratio_, 4 * ratio_);
     }
-    void clock(const EppIn &in, EppOut &out) override
+    void clock(const EppFpgaIn &in, EppFpgaOut &out) override
     {
-        m_->epp_d_i = in.d;
-        m_->epp_nwrite = in.nwrite;
-        m_->epp_ndatastr = in.ndatastr;
-        m_->epp_naddrstr = in.naddrstr;
-        m_->io_in = in.io_in;
+        V &m = *this->m_;
+        this->drive_epp(in);
+        m.io_in = in.io_in;
         uint32_t phase = static_cast<uint32_t>(k_ % ratio_);
-        m_->clk_high = 1;
+        m.clk_high = 1;
         if (phase == 0)
-            m_->clk_low = 1;
-        m_->eval();
-        m_->clk_high = 0;
+            m.clk_low = 1;
+        m.eval();
+        m.clk_high = 0;
         if (phase == (ratio_ - 1) / 2)
-            m_->clk_low = 0;
-        m_->eval();
+            m.clk_low = 0;
+        m.eval();
         k_++;
-        out.d = m_->epp_d_o;
-        out.d_oe = m_->epp_d_oe;
-        out.nwait = m_->epp_nwait;
-        out.reconfig = m_->reconfig;
-        out.io_out = m_->io_out;
-        out.io_oe = m_->io_oe;
+        this->sample(out);
+        out.reconfig = m.reconfig;
     }
 
   private:
     uint32_t ratio_;
     uint64_t k_ = 0;
-    std::unique_ptr<VerilatedContext> ctx_;
-    std::unique_ptr<V> m_;
 };
 
 struct Hm2EppFw {
     const FwInfo *info;
-    std::unique_ptr<Hm2EppModel> (*make)(uint32_t ratio);
+    std::unique_ptr<EppFpgaModel> (*make)(uint32_t ratio);
 };
 
-template <class V> std::unique_ptr<Hm2EppModel> make_model(uint32_t ratio)
+template <class V> std::unique_ptr<EppFpgaModel> make_model(uint32_t ratio)
 {
     return std::make_unique<Hm2EppModelT<V>>(ratio);
 }
@@ -119,6 +84,7 @@ const Hm2EppFw kFws[] = {
     {&kFwInfo_hm2_7i43_svst4_4, &make_model<Vhm2_7i43_svst4_4>},
     {&kFwInfo_hm2_7i43_sv8, &make_model<Vhm2_7i43_sv8>},
 };
+constexpr int kNumFws = static_cast<int>(sizeof kFws / sizeof kFws[0]);
 
 uint8_t reverse8(uint8_t b)
 {
@@ -127,22 +93,20 @@ uint8_t reverse8(uint8_t b)
     return static_cast<uint8_t>((b & 0xAA) >> 1 | (b & 0x55) << 1);
 }
 
-class Hm2EppBoard final : public EppPortBoard {
+class Hm2EppBoard final : public EppFpgaBoard {
   public:
-    Hm2EppBoard() : pins_(kIoWidth) {}
+    Hm2EppBoard()
+        : EppFpgaBoard("7i43", kIoWidth, "the 7i43 is configured through its CPLD over EPP",
+                       "IDROM CRC")
+    {
+    }
 
-    std::string name() const override { return "7i43"; }
     std::string fpga_part() const override { return kFws[0].info->fpga_part; }
     uint32_t bus() const override { return VB_BUS_EPP_HM2; }
-    std::string firmware() const override { return fw_ ? fw_->info->firmware : ""; }
-    uint32_t clock_low_hz() const override { return fw_ ? fw_->info->clock_low_hz : 0; }
-    uint32_t clock_high_hz() const override { return fw_ ? fw_->info->clock_high_hz : 0; }
-    std::vector<std::string> firmwares() const override
+    uint32_t clock_low_hz() const override { return fw_ < 0 ? 0 : kFws[fw_].info->clock_low_hz; }
+    uint32_t clock_high_hz() const override
     {
-        std::vector<std::string> v;
-        for (const Hm2EppFw &f : kFws)
-            v.push_back(f.info->firmware);
-        return v;
+        return fw_ < 0 ? 0 : kFws[fw_].info->clock_high_hz;
     }
     std::vector<std::pair<std::string, std::string>>
     pin_names(const std::string &firmware) const override
@@ -154,80 +118,28 @@ class Hm2EppBoard final : public EppPortBoard {
                     v.emplace_back(f.info->pins[p].label, f.info->pins[p].function);
         return v;
     }
-    PinBank &pins() override { return pins_; }
-
-    void run_until(uint64_t t) override
-    {
-        if (!model_) {
-            if (t > now_) {
-                pins_.run_events(t);
-                now_ = t;
-            }
-            return;
-        }
-        while (model_ && now_ + th_ <= t)
-            step();
-        if (!model_ && t > now_)
-            run_until(t);
-    }
-
-    int config(uint32_t op, const uint8_t *, size_t, vb_config_status &st,
-               std::string &err) override
-    {
-        std::memset(&st, 0, sizeof st);
-        st.done = fw_ ? 1 : 0;
-        st.init = 1;
-        std::strncpy(st.firmware, firmware().c_str(), sizeof st.firmware - 1);
-        if (op == VB_CONFIG_STATUS)
-            return 0;
-        err = "7i43: the 7i43 is configured through its CPLD over EPP, not through the "
-              "configuration port";
-        return -ENOTSUP;
-    }
-
-    int load(const std::string &firmware, std::string &err) override
-    {
-        const Hm2EppFw *f = find(firmware);
-        if (!f) {
-            err = "firmware " + firmware + " is not built into this vboard for board 7i43";
-            return -ENOENT;
-        }
-        start(*f);
-        return 0;
-    }
 
   protected:
-    bool fpga_running() const override { return model_ != nullptr; }
-    uint64_t step_ns() const override { return th_; }
-    bool fpga_nwait() const override { return out_.nwait; }
-    bool fpga_data(uint8_t &d) const override
+    int fw_count() const override { return kNumFws; }
+    const char *fw_name(int i) const override { return kFws[i].info->firmware; }
+    uint32_t fw_build_id(int i) const override { return kFws[i].info->idrom_crc; }
+    std::unique_ptr<EppFpgaModel> make_model(int i, uint64_t &step_ns) const override
     {
-        d = out_.d;
-        return out_.d_oe;
+        const FwInfo &info = *kFws[i].info;
+        uint32_t ratio = info.clock_high_hz / info.clock_low_hz;
+        step_ns = 1000000000ull / info.clock_high_hz;
+        return kFws[i].make(ratio ? ratio : 1);
     }
 
-    void step() override
+    void stepped() override
     {
-        uint64_t t = now_ + th_;
-        if (pins_.next_event_ns() <= t)
-            pins_.run_events(t);
-        const uint32_t *lv = pins_.inputs();
-        EppIn in;
-        in.d = bus_.d;
-        in.nwrite = bus_.nwrite;
-        in.ndatastr = bus_.ndatastr;
-        in.naddrstr = bus_.naddrstr;
-        in.io_in = lv[0] | (static_cast<uint64_t>(lv[1]) << 32);
-        model_->clock(in, out_);
-        uint32_t ow[2] = {static_cast<uint32_t>(out_.io_out), static_cast<uint32_t>(out_.io_out >> 32)};
-        uint32_t ew[2] = {static_cast<uint32_t>(out_.io_oe), static_cast<uint32_t>(out_.io_oe >> 32)};
-        pins_.set_fpga(ow, ew, t);
-        now_ = t;
-        if (out_.reconfig) {
-            std::fprintf(stderr, "vboard: 7i43: RECONFIG from firmware %s: FPGA cleared\n",
-                         fw_->info->firmware);
-            unconfigure();
-        }
+        if (!out_.reconfig)
+            return;
+        std::fprintf(stderr, "vboard: 7i43: RECONFIG from firmware %s: FPGA cleared\n",
+                     fw_name(fw_));
+        unconfigure();
+        cfg_.clear();
+        cfg_done_ = false;
     }
 
     // The CPLD (FPGA blank).
@@ -242,7 +154,7 @@ class Hm2EppBoard final : public EppPortBoard {
         }
         if (reg_ == 1) {
             if (!write) {
-                r = fw_ ? 1 : 0; // DONE
+                r = fw_ < 0 ? 0 : 1; // DONE
                 return true;
             }
             bool prog = (w & 1u) != 0;
@@ -259,61 +171,15 @@ class Hm2EppBoard final : public EppPortBoard {
         }
         if (prog_b_ && !cfg_done_) {
             cfg_.push_back(reverse8(w));
-            if (cfg_.size() == kFwImageSize)
-                finish_config();
+            if (cfg_.size() == kFwImageSize) {
+                cfg_done_ = true;
+                configure_from(cfg_);
+            }
         }
         return true;
     }
 
   private:
-    static const Hm2EppFw *find(const std::string &name)
-    {
-        for (const Hm2EppFw &f : kFws)
-            if (name == f.info->firmware)
-                return &f;
-        return nullptr;
-    }
-
-    void start(const Hm2EppFw &f)
-    {
-        fw_ = &f;
-        uint32_t ratio = f.info->clock_high_hz / f.info->clock_low_hz;
-        th_ = 1000000000ull / f.info->clock_high_hz;
-        model_ = f.make(ratio ? ratio : 1);
-        out_ = EppOut{};
-    }
-
-    void unconfigure()
-    {
-        model_.reset();
-        fw_ = nullptr;
-        cfg_.clear();
-        cfg_done_ = false;
-        pins_.release_fpga(now_);
-    }
-
-    void finish_config()
-    {
-        cfg_done_ = true;
-        std::string err;
-        std::vector<BuiltFw> built;
-        for (const Hm2EppFw &f : kFws)
-            built.push_back({f.info->firmware, f.info->idrom_crc});
-        int i = match_fw_image(cfg_.data(), cfg_.size(), "7i43", built, "IDROM CRC", err);
-        if (i >= 0) {
-            std::fprintf(stderr, "vboard: 7i43: configured with %s\n", kFws[i].info->firmware);
-            start(kFws[i]);
-            return;
-        }
-        std::fprintf(stderr, "vboard: 7i43: configuration failed, board stays blank: %s\n",
-                     err.c_str());
-    }
-
-    PinBank pins_;
-    const Hm2EppFw *fw_ = nullptr;
-    std::unique_ptr<Hm2EppModel> model_;
-    EppOut out_;
-    uint64_t th_ = 10;
     uint8_t reg_ = 0;
     bool prog_b_ = true, cfg_done_ = false;
     std::vector<uint8_t> cfg_;

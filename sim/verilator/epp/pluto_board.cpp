@@ -25,17 +25,14 @@
 // 0..18: OUT0..9, UP/DN0..3, LED; pluto_step 0..22: OUT0..13, STEP/DIR0..3,
 // LED), pins 23..42 are its io_in bits (pluto_servo IN0..7, QZ0..3, QB0..3,
 // QA0..3 = pins 23..42; pluto_step IN0..15 = pins 23..38).
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "epp_port_board.h"
+#include "epp_fpga_board.h"
 #include "fwimage.h"
-#include "pins.h"
-#include "verilated.h"
 #include "Vpluto_servo.h"
 #include "Vpluto_step.h"
 
@@ -46,68 +43,31 @@ constexpr uint64_t kClockNs = 25; // 40 MHz
 constexpr uint32_t kPins = 43;
 constexpr uint32_t kFirstInput = 23;
 
-// The firmware-facing signals of one clock.
-struct PlutoIn {
-    uint8_t d = 0xFF;
-    bool nwrite = true, ndatastr = true, naddrstr = true, nreset = true;
-    uint32_t io_in = 0;
-};
-struct PlutoOut {
-    uint8_t d = 0;
-    bool d_oe = false, nwait = false;
-    uint32_t io_out = 0, io_oe = 0;
-};
-
-class PlutoModel {
+// One 40 MHz clock per clock(); nInit is the EPP front end's nReset.
+template <class V> class PlutoModelT final : public EppFpgaModelT<V> {
   public:
-    virtual ~PlutoModel() = default;
-    virtual void clock(const PlutoIn &in, PlutoOut &out) = 0;
-};
-
-template <class V> class PlutoModelT final : public PlutoModel {
-  public:
-    PlutoModelT() : ctx_(std::make_unique<VerilatedContext>())
+    PlutoModelT() : EppFpgaModelT<V>("pluto") { this->reset(4); }
+    void clock(const EppFpgaIn &in, EppFpgaOut &out) override
     {
-        m_ = std::make_unique<V>(ctx_.get(), "pluto");
-        PlutoIn idle;
-        idle.io_in = 0xFFFFFFFFu;
-        PlutoOut o;
-        m_->rst = 1;
-        for (int i = 0; i < 4; i++)
-            clock(idle, o);
-        m_->rst = 0;
+        V &m = *this->m_;
+        this->drive_epp(in);
+        m.epp_nreset = in.nreset;
+        m.io_in = static_cast<uint32_t>(in.io_in);
+        m.clk = 1;
+        m.eval();
+        m.clk = 0;
+        m.eval();
+        this->sample(out);
     }
-    void clock(const PlutoIn &in, PlutoOut &out) override
-    {
-        m_->epp_d_i = in.d;
-        m_->epp_nwrite = in.nwrite;
-        m_->epp_ndatastr = in.ndatastr;
-        m_->epp_naddrstr = in.naddrstr;
-        m_->epp_nreset = in.nreset;
-        m_->io_in = in.io_in;
-        m_->clk = 1;
-        m_->eval();
-        m_->clk = 0;
-        m_->eval();
-        out.d = m_->epp_d_o;
-        out.d_oe = m_->epp_d_oe;
-        out.nwait = m_->epp_nwait;
-        out.io_out = m_->io_out;
-        out.io_oe = m_->io_oe;
-    }
-
-  private:
-    std::unique_ptr<VerilatedContext> ctx_;
-    std::unique_ptr<V> m_;
 };
 
 struct PlutoFw {
     const char *name;
     uint32_t n_out, n_in;
-    std::unique_ptr<PlutoModel> (*make)();
+    std::unique_ptr<EppFpgaModel> (*make)();
 };
 
-template <class V> std::unique_ptr<PlutoModel> make_model()
+template <class V> std::unique_ptr<EppFpgaModel> make_model()
 {
     return std::make_unique<PlutoModelT<V>>();
 }
@@ -116,6 +76,7 @@ const PlutoFw kPlutoFws[] = {
     {"pluto_servo", 19, 20, &make_model<Vpluto_servo>},
     {"pluto_step", 23, 16, &make_model<Vpluto_step>},
 };
+constexpr int kNumFws = static_cast<int>(sizeof kPlutoFws / sizeof kPlutoFws[0]);
 
 // The image's "IDROM CRC" field for a Pluto firmware: CRC-32 of its name
 // (the build's tools/vbfw call writes the same; there is no IDROM).
@@ -124,23 +85,20 @@ uint32_t design_id(const char *name)
     return crc32(reinterpret_cast<const uint8_t *>(name), std::strlen(name));
 }
 
-class PlutoBoard final : public EppPortBoard {
+class PlutoBoard final : public EppFpgaBoard {
   public:
-    PlutoBoard() : pins_(kPins) {}
+    PlutoBoard()
+        : EppFpgaBoard("pluto", kPins,
+                       "the Pluto-P is configured through its parallel port (nCONFIG/DCLK/DATA0 "
+                       "on nInit/nStrobe/data)",
+                       "design id")
+    {
+    }
 
-    std::string name() const override { return "pluto"; }
     std::string fpga_part() const override { return "ep1k10tc100"; }
     uint32_t bus() const override { return VB_BUS_EPP_PLUTO; }
-    std::string firmware() const override { return fw_ ? fw_->name : ""; }
-    uint32_t clock_low_hz() const override { return fw_ ? 40000000u : 0; }
+    uint32_t clock_low_hz() const override { return fw_ < 0 ? 0 : 40000000u; }
     uint32_t clock_high_hz() const override { return 0; }
-    std::vector<std::string> firmwares() const override
-    {
-        std::vector<std::string> v;
-        for (const PlutoFw &f : kPlutoFws)
-            v.push_back(f.name);
-        return v;
-    }
     std::vector<std::pair<std::string, std::string>>
     pin_names(const std::string &firmware) const override
     {
@@ -180,78 +138,21 @@ class PlutoBoard final : public EppPortBoard {
             v.emplace_back("", name);
         return v;
     }
-    PinBank &pins() override { return pins_; }
-
-    void run_until(uint64_t t) override
-    {
-        if (!model_) {
-            if (t > now_) {
-                pins_.run_events(t);
-                now_ = t;
-            }
-            return;
-        }
-        while (now_ + kClockNs <= t)
-            step();
-    }
-
-    int config(uint32_t op, const uint8_t *, size_t, vb_config_status &st,
-               std::string &err) override
-    {
-        std::memset(&st, 0, sizeof st);
-        status(st);
-        if (op == VB_CONFIG_STATUS)
-            return 0;
-        err = "pluto: the Pluto-P is configured through its parallel port (nCONFIG/DCLK/DATA0 "
-              "on nInit/nStrobe/data), not through the configuration port";
-        return -ENOTSUP;
-    }
-
-    int load(const std::string &firmware, std::string &err) override
-    {
-        const PlutoFw *f = find(firmware);
-        if (!f) {
-            err = "firmware " + firmware + " is not a Pluto-P firmware of this vboard "
-                  "(built: pluto_servo, pluto_step)";
-            return -ENOENT;
-        }
-        start(*f);
-        return 0;
-    }
 
   protected:
-    bool fpga_running() const override { return model_ != nullptr; }
-    uint64_t step_ns() const override { return kClockNs; }
-    bool fpga_nwait() const override { return out_.nwait; }
-    bool fpga_data(uint8_t &d) const override
+    int fw_count() const override { return kNumFws; }
+    const char *fw_name(int i) const override { return kPlutoFws[i].name; }
+    uint32_t fw_build_id(int i) const override { return design_id(kPlutoFws[i].name); }
+    std::unique_ptr<EppFpgaModel> make_model(int i, uint64_t &step_ns) const override
     {
-        d = out_.d;
-        return out_.d_oe;
+        step_ns = kClockNs;
+        return kPlutoFws[i].make();
     }
-
-    // One 40 MHz clock: inputs from the pins, outputs back to them.
-    void step() override
+    uint64_t fpga_inputs(uint64_t pins) const override
     {
-        uint64_t t = now_ + kClockNs;
-        if (pins_.next_event_ns() <= t)
-            pins_.run_events(t);
-        const uint32_t *lv = pins_.inputs();
-        uint64_t all = lv[0] | (static_cast<uint64_t>(lv[1]) << 32);
-        PlutoIn in;
-        in.d = bus_.d;
-        in.nwrite = bus_.nwrite;
-        in.ndatastr = bus_.ndatastr;
-        in.naddrstr = bus_.naddrstr;
-        in.nreset = (control_ & 0x04) != 0;
-        in.io_in = static_cast<uint32_t>((all >> kFirstInput) & ((1ull << fw_->n_in) - 1));
-        model_->clock(in, out_);
-        uint64_t o = out_.io_out & ((1ull << fw_->n_out) - 1);
-        uint64_t e = out_.io_oe & ((1ull << fw_->n_out) - 1);
-        uint32_t ow[2] = {static_cast<uint32_t>(o), static_cast<uint32_t>(o >> 32)};
-        uint32_t ew[2] = {static_cast<uint32_t>(e), static_cast<uint32_t>(e >> 32)};
-        pins_.set_fpga(ow, ew, t);
-        now_ = t;
+        return (pins >> kFirstInput) & ((1ull << kPlutoFws[fw_].n_in) - 1);
     }
+    uint64_t fpga_output_mask() const override { return (1ull << kPlutoFws[fw_].n_out) - 1; }
 
     // nInit (bit 2) is nCONFIG, nStrobe (bit 0, inverted by the port) DCLK.
     void control_written(uint8_t old, uint8_t v) override
@@ -260,9 +161,9 @@ class PlutoBoard final : public EppPortBoard {
         bool dclk_was = (old & 0x01) == 0, dclk = (v & 0x01) == 0;
         if (ninit_was && !ninit) {
             // nCONFIG low: the FPGA clears itself and waits for a bitstream.
-            if (fw_)
+            if (fw_ >= 0)
                 std::fprintf(stderr, "vboard: pluto: nCONFIG low: firmware %s cleared\n",
-                             fw_->name);
+                             fw_name(fw_));
             unconfigure();
             loading_ = true;
             bits_.clear();
@@ -274,65 +175,18 @@ class PlutoBoard final : public EppPortBoard {
     }
 
   private:
-    static const PlutoFw *find(const std::string &name)
-    {
-        for (const PlutoFw &f : kPlutoFws)
-            if (name == f.name)
-                return &f;
-        return nullptr;
-    }
-
-    void status(vb_config_status &st) const
-    {
-        st.done = fw_ ? 1 : 0;
-        st.init = 1;
-        std::strncpy(st.firmware, firmware().c_str(), sizeof st.firmware - 1);
-    }
-
-    void start(const PlutoFw &f)
-    {
-        fw_ = &f;
-        model_ = f.make();
-        out_ = PlutoOut{};
-    }
-
-    void unconfigure()
-    {
-        model_.reset();
-        fw_ = nullptr;
-        pins_.release_fpga(now_);
-    }
-
     void shift_in(unsigned bit)
     {
         if (nbits_ % 8 == 0)
             bits_.push_back(0);
         bits_.back() |= static_cast<uint8_t>(bit << (nbits_ % 8));
         nbits_++;
-        if (nbits_ == kFwImageSize * 8)
-            finish_upload();
+        if (nbits_ == kFwImageSize * 8) {
+            loading_ = false;
+            configure_from(bits_);
+        }
     }
 
-    void finish_upload()
-    {
-        loading_ = false;
-        std::string err;
-        std::vector<BuiltFw> built;
-        for (const PlutoFw &f : kPlutoFws)
-            built.push_back({f.name, design_id(f.name)});
-        int i = match_fw_image(bits_.data(), bits_.size(), "pluto", built, "design id", err);
-        if (i >= 0) {
-            std::fprintf(stderr, "vboard: pluto: configured with %s\n", kPlutoFws[i].name);
-            start(kPlutoFws[i]);
-            return;
-        }
-        std::fprintf(stderr, "vboard: pluto: configuration failed, board stays blank: %s\n",
-                     err.c_str());
-    }
-    PinBank pins_;
-    const PlutoFw *fw_ = nullptr;
-    std::unique_ptr<PlutoModel> model_;
-    PlutoOut out_;
     bool loading_ = false;
     std::vector<uint8_t> bits_;
     size_t nbits_ = 0;
