@@ -66,7 +66,9 @@ def status(c: vboard.VBoardClient) -> dict[str, Any]:
 
 
 def test_pwm_turns_the_motor_and_the_encoder_counts(machine_board: vboard.VBoardProcess) -> None:
-    with machine_board.client() as c:
+    # 150 ms of board time in one request: a sanitized board on a loaded
+    # machine needs more than the client's default 10 s for it
+    with machine_board.client(timeout=300) as c:
         pins = c.probe(0, 6)
         assert pins[ENC0_A].ext == vboard.EXT_PLANT and pins[ENC0_B].ext == vboard.EXT_PLANT
         assert pins[ENC0_IDX].ext == vboard.EXT_PLANT
