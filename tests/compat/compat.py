@@ -256,17 +256,47 @@ def _context_for(cfgdir: Path) -> halprep.Context:
     return ctx
 
 
+def _prepare_sourced(
+    text: str, ini: halprep.Ini, ctx: halprep.Context, hw: Hardware, work: Path, fr: FileResult
+) -> None:
+    """Prepare in place the configuration's files that `source` lines of
+    TEXT name (halcmd runs in work, so a relative name is there), each once,
+    before the file that sources them; their actions count for FR."""
+    for line in text.splitlines():
+        words = halprep.split_words(line.split("#", 1)[0])
+        if len(words) != 2 or words[0] != "source":
+            continue
+        path = (work / halprep.resolve(words[1], ini)).resolve()
+        if not path.is_relative_to(work.resolve()) or not path.is_file():
+            continue
+        if str(path) in ctx.prepared_sources:
+            continue
+        ctx.prepared_sources.add(str(path))
+        inner = path.read_text(errors="replace")
+        _prepare_sourced(inner, ini, ctx, hw, work, fr)
+        prep = halprep.prepare(inner, ini, ctx, hw.hook)
+        for kind, counts in (("remove", fr.removed), ("rewrite", fr.rewritten)):
+            for part, n in prep.count(kind).items():
+                counts[part] = counts.get(part, 0) + n
+        path.write_text(prep.text)
+
+
 def _prepare(step: Step, ini: halprep.Ini, ctx: halprep.Context, hw: Hardware, work: Path) -> str:
-    """Write the prepared copy of a .hal step; its path relative to work."""
+    """Write the prepared copy of a .hal step (and of the files it
+    sources); its path relative to work."""
     assert step.dst is not None
     if step.kind == "halcmd":
         text = "\n".join(ini.all("HAL", "HALCMD")) + "\n"
     else:
         assert step.src is not None
         text = step.src.read_text(errors="replace")
-    prep = halprep.prepare(text, ini, ctx, hw.hook)
     fr = step.fr
-    fr.removed, fr.rewritten = prep.count("remove"), prep.count("rewrite")
+    fr.removed, fr.rewritten = {}, {}
+    _prepare_sourced(text, ini, ctx, hw, work, fr)
+    prep = halprep.prepare(text, ini, ctx, hw.hook)
+    for kind, counts in (("remove", fr.removed), ("rewrite", fr.rewritten)):
+        for part, n in prep.count(kind).items():
+            counts[part] = counts.get(part, 0) + n
     fr.note = "; ".join(a.why for _, a in prep.actions if a.kind == "keep" and a.why)
     step.dst.parent.mkdir(parents=True, exist_ok=True)
     step.dst.write_text(prep.text)

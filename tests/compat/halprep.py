@@ -140,6 +140,8 @@ class Context:
     dead_signals: dict[str, str] = field(default_factory=dict)
     # signals a kept line created (a removed net does not make them dead)
     live_signals: set[str] = field(default_factory=set)
+    # files `source`d by the configuration's .hal files, already prepared
+    prepared_sources: set[str] = field(default_factory=set)
 
     def owner(self, name: str) -> str | None:
         """The removed part a pin/param/function name belongs to, or None."""

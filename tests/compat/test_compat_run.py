@@ -57,6 +57,11 @@ net in0 parport.0.pin-11-in => and2.0.in0 \\
 setp axis.x.jog-scale 1
 loadusr -W hal_manualtoolchange
 net tool-change iocontrol.0.tool-change => hal_manualtoolchange.change
+source good-sub.hal
+"""
+
+# a file good.hal sources: prepared by the same rule
+GOOD_SUB = """net subpos joint.0.pos-fb => and2.0.in1
 """
 
 GOOD_TCL = """# a Tcl HAL file as LinuxCNC's sim configurations write them
@@ -114,6 +119,7 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, list[dict[s
         (cfg / f"{d}.ini").write_text(ini)
         (cfg / f"{d}.hal").write_text(hal)
         (cfg / f"{d}.tcl").write_text(tcl)
+    (samples / "set" / "good" / "good-sub.hal").write_text(GOOD_SUB)
     (samples / "other" / "x").mkdir(parents=True)
     (samples / "other" / "x" / "x.ini").write_text("[HAL]\nHALFILE = x.hal\n")
     out = base / "out"
@@ -155,7 +161,8 @@ def test_good_configuration_loads(run: Run) -> None:
     assert good["hardware"] == ["vboard 5i20", "vparport"]
     assert good["postgui"] == ["panel.hal"]
     assert files["good.hal"]["removed"] == {"kinematics": 1, "motion": 3, "iocontrol": 2}
-    assert files["good.hal"]["rewritten"] == {"board": 2, "motion": 3}
+    # (one rewritten net is in good-sub.hal, which good.hal sources)
+    assert files["good.hal"]["rewritten"] == {"board": 2, "motion": 4}
     assert "| set/good/good.ini | good.hal | loaded |" in text
 
 
@@ -197,3 +204,5 @@ def test_prepared_files_keep_their_lines(run: Run) -> None:
     assert prepared[14].startswith("net xstep => hm2_5i20.0.stepgen.00.position-cmd")
     assert prepared[16].startswith("net in0 parport.0.pin-11-in => and2.0.in0  #compat")
     assert prepared[17] == "#compat: (continued)"
+    sub = (base / "kept" / "set" / "good" / "good.ini" / "good-sub.hal").read_text()
+    assert sub.startswith("net subpos => and2.0.in1  #compat"), sub
