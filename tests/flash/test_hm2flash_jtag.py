@@ -41,3 +41,12 @@ def test_cable_spec_and_usage_errors() -> None:
     assert "--scan needs --jtag CABLE" in run("--scan", check=2).stderr
     p = run("--jtag", "ftdi", "--reload", check=2)
     assert "--jtag goes with --scan or --program FILE" in p.stderr
+
+
+def test_gpiod_cable_errors() -> None:
+    p = run("--jtag", "gpiod:gpiochip99:1/2/3/4", "--scan", check=1)
+    assert "cannot open GPIO chip 'gpiochip99'" in p.stderr
+    p = run("--jtag", "gpiod:gpiochip0:1/2/3", "--scan", check=1)
+    assert "want 4 lines TCK/TMS/TDI/TDO, got 3" in p.stderr
+    p = run("--jtag", "gpiod:gpiochip0:1/2/2/4", "--scan", check=1)
+    assert "used twice" in p.stderr

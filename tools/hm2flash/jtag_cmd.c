@@ -2,7 +2,7 @@
 /*
  * jtag_cmd.c - hm2flash --jtag CABLE: the IDCODE scan of a JTAG chain and
  * volatile configuration of its Xilinx FPGA (JPROGRAM/CFG_IN/JSTART)
- * through an FTDI MPSSE cable over libusb.
+ * through an FTDI MPSSE cable over libusb or four GPIO lines (libgpiod).
  */
 #define _POSIX_C_SOURCE 200809L
 #include "jtag_cmd.h"
@@ -15,6 +15,7 @@
 
 #include "hm2/bitfile.h"
 #include "hm2/jtag.h"
+#include "hm2/jtag_gpio.h"
 #include "hm2/jtag_mpsse.h"
 #include "hm2/jtag_usb.h"
 #include "hm2/jtag_xilinx.h"
@@ -23,6 +24,8 @@
 #define MAX_DEVICES 8
 
 struct session {
+    int is_gpio;
+    struct jtag_gpio gpio;
     struct jtag_usb usb;
     struct mpsse m;
     struct jtag j;
@@ -30,8 +33,34 @@ struct session {
     int n;
 };
 
+static void close_chain(struct session *s);
+
+static int open_gpio(struct session *s, const char *cable)
+{
+    memset(s, 0, sizeof(*s));
+    s->is_gpio = 1;
+    struct jtag_gpio_lines lines;
+    char err[256];
+    if (jtag_gpiod_lines_open(&lines, cable + 6, err, sizeof(err))) {
+        fprintf(stderr, "hm2flash: jtag %s: %s\n", cable, err);
+        return -1;
+    }
+    jtag_gpio_init(&s->gpio, &lines);
+    struct jtag_cable c = jtag_gpio_cable(&s->gpio);
+    jtag_init(&s->j, &c);
+    if (jtag_scan_chain(&s->j, s->ids, MAX_DEVICES, &s->n)) {
+        fprintf(stderr, "hm2flash: jtag %s: %s\n", cable, s->j.err);
+        close_chain(s);
+        return -1;
+    }
+    return 0;
+}
+
 static int open_chain(struct session *s, const char *cable)
 {
+    if (strncmp(cable, "gpiod:", 6) == 0)
+        return open_gpio(s, cable);
+    memset(s, 0, sizeof(*s));
     if (jtag_usb_open(&s->usb, cable)) {
         fprintf(stderr, "hm2flash: jtag %s: %s\n", cable, s->usb.err);
         return -1;
@@ -56,6 +85,10 @@ fail:
 
 static void close_chain(struct session *s)
 {
+    if (s->is_gpio) {
+        s->gpio.lines.close(s->gpio.lines.ctx);
+        return;
+    }
     mpsse_close(&s->m);
     jtag_usb_close(&s->usb);
 }

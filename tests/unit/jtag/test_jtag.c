@@ -23,6 +23,7 @@
 
 #include "check.h"
 #include "hm2/jtag.h"
+#include "hm2/jtag_gpio.h"
 #include "hm2/jtag_mpsse.h"
 #include "hm2/jtag_xilinx.h"
 
@@ -512,6 +513,86 @@ static void test_xilinx_bad_bitstream(void)
     rig_close(&r);
 }
 
+/* ---- the GPIO cable on a model of the wire ---- */
+
+struct wire {
+    struct chain *chain;
+    int level[JTAG_GPIO_N];
+    int fail_role, fail_after; /* set() of fail_role fails after that many calls */
+    int calls;
+    uint64_t tdo_reads_while_low;
+};
+
+static int wire_set(void *ctx, int role, int level)
+{
+    struct wire *w = ctx;
+    if (role == w->fail_role && ++w->calls > w->fail_after)
+        return -EIO;
+    if (role == JTAG_GPIO_TCK && level && !w->level[JTAG_GPIO_TCK])
+        chain_clock(w->chain, w->level[JTAG_GPIO_TMS], w->level[JTAG_GPIO_TDI]); /* rising */
+    w->level[role] = level;
+    return 0;
+}
+
+static int wire_get(void *ctx, int role, int *level)
+{
+    struct wire *w = ctx;
+    if (role != JTAG_GPIO_TDO)
+        return -EINVAL;
+    w->tdo_reads_while_low += !w->level[JTAG_GPIO_TCK];
+    *level = chain_tdo(w->chain);
+    return 0;
+}
+
+static void wire_close(void *ctx)
+{
+    (void)ctx;
+}
+
+static void test_gpio_cable(void)
+{
+    struct chain c;
+    memset(&c, 0, sizeof(c));
+    uint32_t ids[] = {0x0141C093u, 0x24001093u};
+    c.n = 2;
+    c.stuck_tdo = -1;
+    c.state = RTI;
+    for (int i = 0; i < 2; i++) {
+        c.dev[i].idcode = ids[i];
+        c.dev[i].init = 1;
+        tap_reset_ir(&c.dev[i]);
+    }
+    struct wire w = {&c, {0, 1, 0, 0}, -1, 0, 0, 0};
+    struct jtag_gpio_lines lines = {wire_set, wire_get, wire_close, &w};
+    struct jtag_gpio g;
+    jtag_gpio_init(&g, &lines);
+    struct jtag_cable cab = jtag_gpio_cable(&g);
+    struct jtag j;
+    jtag_init(&j, &cab);
+    uint32_t got[4];
+    int n = 0;
+    CHECK_EQ_INT(jtag_scan_chain(&j, got, 4, &n), 0);
+    CHECK_EQ_INT(n, 2);
+    CHECK_EQ_INT(got[0], 0x24001093u);
+    CHECK_EQ_INT(got[1], 0x0141C093u);
+    CHECK_EQ_INT(g.tck, c.tck); /* one rising edge per bit, no more */
+    CHECK(w.tdo_reads_while_low > 0);
+    uint8_t bits[40];
+    memset(bits, 0x3C, sizeof(bits));
+    memcpy(bits + 8, "\xAA\x99\x55\x66", 4);
+    uint8_t st = 0;
+    CHECK_EQ_INT(jtag_xilinx_program(&j, 0, 2, bits, sizeof(bits), &st), 0);
+    check_received(&c.dev[1], bits, sizeof(bits), 1);
+    CHECK(c.dev[1].done);
+    /* a line that stops working: an error naming it, no hang */
+    w.fail_role = JTAG_GPIO_TCK;
+    w.fail_after = w.calls = 0;
+    CHECK_EQ_INT(jtag_scan_chain(&j, got, 4, &n), -EIO);
+    CHECK(strstr(j.err, "GPIO set of line TCK failed") != NULL);
+    for (int i = 0; i < 2; i++)
+        free(c.dev[i].cfg);
+}
+
 int main(void)
 {
     RUN(test_tms_paths);
@@ -523,5 +604,6 @@ int main(void)
     RUN(test_cable_vanishes);
     RUN(test_xilinx_program);
     RUN(test_xilinx_bad_bitstream);
+    RUN(test_gpio_cable);
     return check_summary();
 }
