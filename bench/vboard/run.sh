@@ -14,6 +14,8 @@
 #      with a 1 ms advance per cycle; anchor: goal <= 20 us, hm2_eth ~100 us,
 #      SoC bridge 59 us.
 #   3. the bare protocol round trip (HELLO), for reference.
+#   4. the 5i25 7I76x2 (ClockLow only) and the Pluto-P's pluto_servo (one
+#      40 MHz clock; with and without VBOARD_EVAL=full) simulation speed.
 # Runs on its own: bench/vboard/run.sh (uses $HM_BUILD or build/).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -54,18 +56,19 @@ speed() {
     t0=$(cpu_ticks)
     line=$("$bench" "$dir/vb.sock" speed "$@")
     t1=$(cpu_ticks)
-    python3 - "$line" "$t0" "$t1" "$(getconf CLK_TCK)" <<'PY'
+    python3 - "$line" "$t0" "$t1" "$(getconf CLK_TCK)" "${RT_HZ:-33.333e6}" <<'PY'
 import re
 import sys
 
 line, t0, t1, hz = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
+rt = float(sys.argv[5])  # the board's clock: real time in cycles per second
 print(line)
 m = re.search(r"\((\d+) cycles in", line)
 cpu = (t1 - t0) / hz
 if m and cpu > 0:
     rate = int(m.group(1)) / cpu
-    print(f"{'':32}{rate / 1e6:.3f} M ClockLow cycles per board CPU second "
-          f"({cpu:.2f} s CPU, {100 * rate / 33.333e6:.1f}% of real time)")
+    print(f"{'':32}{rate / 1e6:.3f} M clock cycles per board CPU second "
+          f"({cpu:.2f} s CPU, {100 * rate / rt:.1f}% of real time at {rt / 1e6:.3f} MHz)")
 PY
 }
 
@@ -95,4 +98,12 @@ printf "machine floor (socketpair):     "; "$bench" pingpong 5000
 # The 5i25's 7I76x2 has no ClockHigh logic (no PWM): only ClockLow edges run.
 BOARD=5i25 FW=7I76x2 start_board
 printf "5i25 7I76x2 simulation, idle:   "; speed 100
+stop_board
+# The Pluto-P runs one 40 MHz clock (vboard-bench's own line counts its
+# cycles as ClockLow cycles of 33.33 MHz; the CPU line uses 40 MHz).
+BOARD=pluto FW=pluto_servo start_board
+printf "Pluto-P pluto_servo, idle:      "; RT_HZ=40e6 speed 100
+stop_board
+VBOARD_EVAL=full BOARD=pluto FW=pluto_servo start_board
+printf "same, VBOARD_EVAL=full:         "; RT_HZ=40e6 speed 100
 stop_board

@@ -26,15 +26,23 @@
 // LED), pins 23..42 are its io_in bits (pluto_servo IN0..7, QZ0..3, QB0..3,
 // QA0..3 = pins 23..42; pluto_step IN0..15 = pins 23..38).
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "epp_fpga_board.h"
 #include "fwimage.h"
 #include "Vpluto_servo.h"
+#include "Vpluto_servo__Syms.h"
 #include "Vpluto_step.h"
+#include "Vpluto_step__Syms.h"
+
+// The Verilated roots' schedulers (defined in the models).
+void Vpluto_servo___024root___eval(Vpluto_servo___024root *vlSelf);
+void Vpluto_step___024root___eval(Vpluto_step___024root *vlSelf);
 
 namespace vb {
 namespace {
@@ -43,22 +51,68 @@ constexpr uint64_t kClockNs = 25; // 40 MHz
 constexpr uint32_t kPins = 43;
 constexpr uint32_t kFirstInput = 23;
 
+// Whether the Verilated root R has an edge detector for clk.
+template <class R, class = void> struct HasClkDetector : std::false_type {};
+template <class R>
+struct HasClkDetector<R, std::void_t<decltype(R::__Vtrigprevexpr___TOP__clk__0)>>
+    : std::true_type {};
+
 // One 40 MHz clock per clock(); nInit is the EPP front end's nReset.
-template <class V> class PlutoModelT final : public EppFpgaModelT<V> {
+//
+// Evaluation, as in localbus_model.h: a clock calls the Verilated
+// scheduler (the root's _eval, RootEval) instead of V::eval(), whose
+// per-call cleanup takes two mutexes, with a full V::eval() every
+// kFlushClocks clocks (queued messages), and does not evaluate after the
+// clock falls: the firmware reacts to rising edges only (no `negedge` in
+// hdl/pluto; its asynchronous resets rise with a clock or with rst, both
+// seen by the rising evaluation), so the model writes the low level into
+// the clock's edge detector itself.  VBOARD_EVAL=full in the environment
+// evaluates fully at both edges (bench figures).
+template <class V, auto RootEval> class PlutoModelT final : public EppFpgaModelT<V> {
   public:
-    PlutoModelT() : EppFpgaModelT<V>("pluto") { this->reset(4); }
+    static constexpr uint32_t kFlushClocks = 1u << 16;
+
+    PlutoModelT() : EppFpgaModelT<V>("pluto")
+    {
+        const char *ev = std::getenv("VBOARD_EVAL");
+        full_eval_ = ev && std::strcmp(ev, "full") == 0;
+        V &m = *this->m_;
+        m.clk = 0;
+        m.rst = 1;
+        m.eval(); // initial blocks and settling: the full evaluation once
+        this->reset(4);
+    }
     void clock(const EppFpgaIn &in, EppFpgaOut &out) override
     {
+        using Root = std::remove_pointer_t<decltype(this->m_->rootp)>;
+        constexpr bool fast = HasClkDetector<Root>::value;
         V &m = *this->m_;
         this->drive_epp(in);
         m.epp_nreset = in.nreset;
         m.io_in = static_cast<uint32_t>(in.io_in);
         m.clk = 1;
-        m.eval();
+        if (!fast || full_eval_ || ++since_flush_ >= kFlushClocks) {
+            m.eval();
+            since_flush_ = 0;
+        } else {
+            m.rootp->vlSymsp->__Vm_activity = true; // as V::eval() does
+            RootEval(m.rootp);
+        }
         m.clk = 0;
-        m.eval();
+        if constexpr (fast) {
+            if (full_eval_)
+                m.eval();
+            else
+                m.rootp->__Vtrigprevexpr___TOP__clk__0 = 0;
+        } else {
+            m.eval();
+        }
         this->sample(out);
     }
+
+  private:
+    uint32_t since_flush_ = 0;
+    bool full_eval_ = false;
 };
 
 struct PlutoFw {
@@ -67,14 +121,14 @@ struct PlutoFw {
     std::unique_ptr<EppFpgaModel> (*make)();
 };
 
-template <class V> std::unique_ptr<EppFpgaModel> make_model()
+template <class V, auto RootEval> std::unique_ptr<EppFpgaModel> make_model()
 {
-    return std::make_unique<PlutoModelT<V>>();
+    return std::make_unique<PlutoModelT<V, RootEval>>();
 }
 
 const PlutoFw kPlutoFws[] = {
-    {"pluto_servo", 19, 20, &make_model<Vpluto_servo>},
-    {"pluto_step", 23, 16, &make_model<Vpluto_step>},
+    {"pluto_servo", 19, 20, &make_model<Vpluto_servo, &Vpluto_servo___024root___eval>},
+    {"pluto_step", 23, 16, &make_model<Vpluto_step, &Vpluto_step___024root___eval>},
 };
 constexpr int kNumFws = static_cast<int>(sizeof kPlutoFws / sizeof kPlutoFws[0]);
 
