@@ -30,6 +30,9 @@ INFO_AREAS = [
     (7, 0x0202, 4, b"LBP16RO\0"),
 ]
 IDROM_COOKIE = 0x55AACAFE
+# Where mesaflash writes the 7i96S's user configuration (32 Mbit flash; its
+# --fallback goes to 0): recorded in tests/data/eth/mesaflash/.
+USER_96S = 0x200000
 
 
 def start(sockdir: Path, board: str, fw: str, ip: str, *extra: str) -> vboard.VBoardProcess:
@@ -187,7 +190,9 @@ def test_eeprom_write_needs_the_key(eth96: tuple[vboard.VBoardProcess, Lbp16Clie
 
 def test_flash_id_erase_write_read(eth96: tuple[vboard.VBoardProcess, Lbp16Client]) -> None:
     _, c = eth96
-    assert c.words32(lbp16.SPACE_FLASH, 0x8, 1) == [0x16]  # 32 Mbit
+    assert c.words32(lbp16.SPACE_FLASH, 0x8, 1) == [
+        0x15
+    ]  # 32 Mbit (spec 17.3: 0x10 = 1 Mbit ... 0x15 = 32 Mbit)
     key = lbp16.write(lbp16.SPACE_STATUS, 2, 0x1A, [0x5A03])
     a = 0x3F0000  # the last sector
     # erase without the key: refused
@@ -247,8 +252,8 @@ def flash_read(c: Lbp16Client, addr: int, n: int) -> bytes:
 
 
 def reload(c: Lbp16Client) -> None:
-    """The ICAP word sequence ending in IPROG, written to space 6 0x1E."""
-    icap = [0xFFFF, 0xAA99, 0x5566, 0x30A1, 0x000E]
+    """The 7i96S's reconfiguration words as mesaflash --reload writes them to space 6 0x1E."""
+    icap = [0x0005, 0x000D]
     assert c.no_reply(lbp16.write(lbp16.SPACE_STATUS, 2, 0x1E, icap, inc=False))
 
 
@@ -266,13 +271,13 @@ def test_blank_flash_then_firmware_written_over_lbp16(sockdir: Path, tmp_path: P
         with Lbp16Client(ip) as c:
             assert c.board_name()[:5] == b"7I96S"  # the Ethernet engine works while blank
             assert c.no_reply(lbp16.read(0, 4, 0x0100, 1))
-            flash_write(c, 0x80000, bit)
-            assert flash_read(c, 0x80000, len(bit)) == bit
+            flash_write(c, USER_96S, bit)
+            assert flash_read(c, USER_96S, len(bit)) == bit
             reload(c)
             assert c.words32(0, 0x0100, 1) == [IDROM_COOKIE]
     finally:
         stop_clean(p)
-    assert flash.read_bytes()[0x80000 : 0x80000 + len(bit)] == bit
+    assert flash.read_bytes()[USER_96S : USER_96S + len(bit)] == bit
     p = start(sockdir, "7i96s", "", lbp16.unique_loopback(), "--flash", str(flash))
     try:
         assert "7i96s_d" in p.ready_line
@@ -288,10 +293,10 @@ def test_corrupt_user_image_falls_back(sockdir: Path, tmp_path: Path) -> None:
     ip = p.ready_line.split("udp ")[1].split(":")[0]
     try:
         with Lbp16Client(ip) as c:
-            flash_write(c, 0x80000, b"not a bitfile")
+            flash_write(c, USER_96S, b"not a bitfile")
             reload(c)
             assert c.words32(0, 0x0100, 1) == [IDROM_COOKIE]
     finally:
         stop_clean(p)
     # the flash file decides at the next start: --firmware does not rewrite it
-    assert flash.read_bytes()[0x80000:0x8000D] == b"not a bitfile"
+    assert flash.read_bytes()[USER_96S : USER_96S + 13] == b"not a bitfile"

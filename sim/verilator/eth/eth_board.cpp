@@ -21,13 +21,36 @@ struct EthModel {
     FlashLayout flash;
 };
 
-// 7i92: Spartan-6 with a 16 Mbit SPI flash (boot block at 0, fallback at
-// 64 KiB, user configuration at 512 KiB, 64 KiB sectors); 7I96S: Efinix
-// T20 with a 32 Mbit flash, same layout.
+// Where mesaflash writes the configurations (tests/data/eth/mesaflash):
+// 7i92, Spartan-6 with a 16 Mbit SPI flash: boot block at 0, fallback at
+// 64 KiB, user configuration at 1 MiB; 7I96S, Efinix T20 with a 32 Mbit
+// flash: fallback at 0, user configuration at 2 MiB.  64 KiB sectors.
 const EthModel kModels[] = {
-    {"7i92", "7I92", {2u << 20, 0x15, 0x80000, 0x10000, 0x10000}},
-    {"7i96s", "7I96S", {4u << 20, 0x16, 0x80000, 0x10000, 0x10000}},
+    {"7i92", "7I92", {2u << 20, 0x14, 0x100000, 0x10000, 0x10000}},
+    {"7i96s", "7I96S", {4u << 20, 0x15, 0x200000, 0x0, 0x10000}},
 };
+
+// The Spartan-6 boot block as mesaflash --fix-boot-block writes it to a
+// 7i92 (spec/hostmot2.md 17.3, recorded in tests/data/eth/mesaflash):
+// dummy words, sync, GENERAL1/2 = MultiBoot (user) address with read
+// opcode 0x0B, GENERAL3/4 = fallback address, then IPROG and seven
+// NOOPs, in a 256-byte page padded with zeros.
+std::vector<uint8_t> mesa_boot_block(uint32_t user, uint32_t fallback)
+{
+    const uint16_t words[] = {
+        0xFFFF, 0xFFFF, 0xFFFF, 0xFFFF, 0xFFFF, 0xAA99, 0x5566, 0x31E1, 0xFFFF, 0x3261,
+        static_cast<uint16_t>(user), 0x3281, static_cast<uint16_t>(0x0B00 | (user >> 16 & 0xFF)),
+        0x32A1, static_cast<uint16_t>(fallback), 0x32C1,
+        static_cast<uint16_t>(0x0B00 | (fallback >> 16 & 0xFF)), 0x30A1, 0x0000, 0x3301, 0x2100,
+        0x3201, 0x001F, 0x30A1, 0x000E, 0x2000, 0x2000, 0x2000, 0x2000, 0x2000, 0x2000, 0x2000};
+    std::vector<uint8_t> v;
+    for (uint16_t w : words) { // big-endian, as the configuration logic reads the flash
+        v.push_back(static_cast<uint8_t>(w >> 8));
+        v.push_back(static_cast<uint8_t>(w));
+    }
+    v.resize(256, 0x00); // one flash page, the rest zero
+    return v;
+}
 
 const EthModel *model_of(const std::string &board)
 {
@@ -191,8 +214,11 @@ class EthBoard::Target final : public Lbp16Target {
     {
         b_.icap_.push_back(w);
         size_t n = b_.icap_.size();
-        // IPROG: a command-register write (0x30A1) of 0x000E.
-        if (n >= 2 && b_.icap_[n - 2] == 0x30A1 && b_.icap_[n - 1] == 0x000E)
+        // Spartan-6 (7i92): IPROG, a command-register write (0x30A1) of
+        // 0x000E.  Efinix (7i96S): mesaflash --reload writes 0x0005 then
+        // 0x000D.  The FPGA reconfigures after the datagram.
+        if (n >= 2 && ((b_.icap_[n - 2] == 0x30A1 && b_.icap_[n - 1] == 0x000E) ||
+                       (b_.icap_[n - 2] == 0x0005 && b_.icap_[n - 1] == 0x000D)))
             b_.reload_pending_ = true;
         if (n > 64)
             b_.icap_.erase(b_.icap_.begin(), b_.icap_.begin() + 32);
@@ -283,6 +309,11 @@ int EthBoard::program_builtin(const std::string &firmware, std::string &err)
         for (uint32_t a : {layout_.fallback_addr, layout_.user_addr}) {
             std::fill(flash_.begin() + a, flash_.begin() + a + layout_.erase_size, 0xFF);
             std::copy(bit.begin(), bit.end(), flash_.begin() + a);
+        }
+        if (layout_.fallback_addr != 0) { // Spartan-6: the boot block at 0 (mesaflash checks it)
+            std::vector<uint8_t> bb = mesa_boot_block(layout_.user_addr, layout_.fallback_addr);
+            std::fill(flash_.begin(), flash_.begin() + layout_.erase_size, 0xFF);
+            std::copy(bb.begin(), bb.end(), flash_.begin());
         }
         flash_dirty_ = true;
         save_flash();

@@ -3,6 +3,7 @@
 // udp.cpp - the LBP16 UDP endpoint (udp.h).
 #include "udp.h"
 
+#include <algorithm>
 #include <arpa/inet.h>
 #include <cerrno>
 #include <cstdio>
@@ -106,12 +107,18 @@ void UdpEndpoint::on_readable()
         if (tick_ns_ && is_servo_read(buf, static_cast<size_t>(n)))
             board_.run_until(board_.now_ns() + tick_ns_);
         bool send = board_.lbp16(buf, static_cast<size_t>(n), reply);
-        if (log_)
-            std::fprintf(stderr, "vboard: LBP16 %zd bytes from %s:%u -> %s%s @%llu ns\n", n,
-                         inet_ntoa(from.sin_addr), ntohs(from.sin_port),
+        if (log_) {
+            char hex[3 * 24 + 4] = "";
+            size_t shown = std::min<size_t>(static_cast<size_t>(n), 24);
+            for (size_t i = 0; i < shown; i++)
+                std::snprintf(hex + 3 * i, 4, " %02x", buf[i]);
+            std::fprintf(stderr, "vboard: LBP16 %zd bytes from %s:%u [%s%s] -> %s%s @%llu ns\n", n,
+                         inet_ntoa(from.sin_addr), ntohs(from.sin_port), hex + 1,
+                         shown < static_cast<size_t>(n) ? " ..." : "",
                          send ? std::to_string(reply.size()).c_str() : "no",
                          send ? " bytes" : (" reply " + board_.engine().last_error()).c_str(),
                          static_cast<unsigned long long>(board_.now_ns()));
+        }
         if (!send)
             continue;
         ssize_t s = ::sendto(fd_, reply.data(), reply.size(), 0,
