@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import shutil
 import tempfile
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from flashhelpers import hm2flash_binary, vboard
+from flashhelpers import StartBoard, hm2flash_binary, vboard
 
 HERE = Path(__file__).resolve().parent
 
@@ -28,9 +28,6 @@ def sockdir() -> Iterator[Path]:
     d = Path(tempfile.mkdtemp(prefix="fl"))
     yield d
     shutil.rmtree(d, ignore_errors=True)
-
-
-StartBoard = Callable[..., vboard.VBoardProcess]
 
 
 @pytest.fixture

@@ -9,6 +9,7 @@ import struct
 import subprocess
 import sys
 import zlib
+from collections.abc import Callable
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -70,3 +71,9 @@ def run(*args: str, check: int | None = 0) -> subprocess.CompletedProcess[str]:
     if check is not None:
         assert p.returncode == check, (p.returncode, p.stdout, p.stderr)
     return p
+
+
+# start_board's type (the fixture in conftest.py).  It lives here, not in
+# conftest.py: `from conftest import` finds whichever conftest.py pytest
+# loaded first when it collects the whole tests/ tree.
+StartBoard = Callable[..., vboard.VBoardProcess]

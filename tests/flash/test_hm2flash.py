@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 import pytest
-from conftest import StartBoard
+from flashhelpers import StartBoard
 from flashhelpers import (
     BOOT,
     BOOT_BLOCK,

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from conftest import StartBoard
+from flashhelpers import StartBoard
 from flashhelpers import USER, vboard
 
 CTRL, DATA, ICAP = 0x70, 0x74, 0x78
