@@ -7,6 +7,7 @@ for another FPGA leaves the board as it was."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
@@ -33,7 +34,9 @@ def test_program_blank_board(
     method: str,
     firmware: str,
 ) -> None:
-    path = fw(*file) if file else str(vboard.build_dir() / "lib" / "firmware" / "pluto_servo.rbf")
+    # the Pluto-P's file as a relative path: taken as it is, not looked up
+    rbf = vboard.build_dir() / "lib" / "firmware" / "pluto_servo.rbf"
+    path = fw(*file) if file else os.path.relpath(rbf)
     with vboard.VBoardProcess(sockdir / "b.sock", board) as b:
         p = run("--device", device, "--addr", f"sim:{b.socket_path}", "--program", path)
         assert f"Programming FPGA ({method})..." in p.stdout

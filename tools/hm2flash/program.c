@@ -17,6 +17,8 @@
 #define _GNU_SOURCE
 #include "program.h"
 
+#include <limits.h>
+
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -248,7 +250,13 @@ static int program_pluto(const struct program_req *q)
     char err[256], path[512];
     uint8_t *img = NULL;
     size_t len = 0;
-    if (pluto_read_firmware(q->file, &img, &len, path, sizeof(path), err, sizeof(err))) {
+    /* a file named on the command line is taken as it is; a bare name that
+     * is no file here is looked up on the firmware path, as the drivers do */
+    char *abs = realpath(q->file, NULL);
+    int r = pluto_read_firmware(abs ? abs : q->file, &img, &len, path, sizeof(path), err,
+                                sizeof(err));
+    free(abs);
+    if (r) {
         fprintf(stderr, "hm2flash: %s\n", err);
         return 1;
     }
