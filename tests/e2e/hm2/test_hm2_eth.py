@@ -165,3 +165,38 @@ def test_bad_board_ip(tmp_path: Path, args: str, text: str) -> None:
     assert r.returncode != 0, out
     assert text in out, out
     assert "hm2_eth: driver unloaded" in out or "insmod for hm2_eth failed" in out
+
+
+LCNC = Path(__file__).resolve().parents[2] / "data" / "eth" / "linuxcnc" / "hm2_eth-7i96s.out"
+
+
+def show_rows(out: str, prefix: str) -> dict[str, tuple[str, str]]:
+    """name -> (type, dir) of `show pin/param` rows under prefix."""
+    rows = {}
+    for line in out.splitlines():
+        f = line.split()
+        if len(f) >= 5 and f[-1].startswith(prefix) and f[1] in ("bit", "s32", "u32", "float"):
+            rows[f[-1]] = (f[1], f[2])
+    return rows
+
+
+def test_pins_as_linuxcnc_exports_them(
+    tmp_path: Path, board: tuple[vboard.VBoardProcess, str]
+) -> None:
+    """packet-error pins and stepgen pins: names, types and directions as
+    LinuxCNC 2.9's hm2_eth exported them for the same board (recorded in
+    tests/data/eth/linuxcnc; its packet-error-decrement is read-only there,
+    ours is read-write as hm2_eth(9) documents)."""
+    _, ip = board
+    config = "num_encoders=1 num_pwmgens=1 num_stepgens=5"
+    script = load(ip, config) + "simrun 3ms\n"
+    script += f"show pin {PFX}.packet\nshow param {PFX}.packet\nshow pin {PFX}.stepgen.00\n"
+    r = halrun(tmp_path, script)
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    want = show_rows(LCNC.read_text(), PFX)
+    got = show_rows(out, PFX)
+    want[f"{PFX}.packet-error-decrement"] = ("s32", "RW")
+    for name in want:
+        assert got.get(name) == want[name], name
+    assert len(want) == 22

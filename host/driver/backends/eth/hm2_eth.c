@@ -96,7 +96,7 @@ static int export_errpins(struct hm2_eth_board *b, int comp_id)
     if ((r = hal_pin_bit_newf(HAL_OUT, &h->p.error, comp_id, "%s.packet-error", n)) ||
         (r = hal_pin_s32_newf(HAL_OUT, &h->p.level, comp_id, "%s.packet-error-level", n)) ||
         (r = hal_pin_bit_newf(HAL_OUT, &h->p.exceeded, comp_id, "%s.packet-error-exceeded", n)) ||
-        (r = hal_pin_s32_newf(HAL_OUT, &h->p.total, comp_id, "%s.packet-error-total", n)) ||
+        (r = hal_pin_u32_newf(HAL_IO, &h->p.total, comp_id, "%s.packet-error-total", n)) ||
         (r = hal_param_s32_newf(HAL_RW, &h->read_timeout, comp_id, "%s.packet-read-timeout",
                                 n)) ||
         (r = hal_param_s32_newf(HAL_RW, &h->limit, comp_id, "%s.packet-error-limit", n)) ||

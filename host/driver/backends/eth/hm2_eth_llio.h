@@ -41,13 +41,15 @@ extern "C" {
  * at hm2_eth_board.local. */
 struct hm2_eth_errpins {
     volatile bool *error, *exceeded;
-    volatile int32_t *level, *total;
+    volatile int32_t *level;
+    volatile uint32_t *total; /* u32 I/O, as LinuxCNC 2.9 exports it */
     volatile int32_t *limit, *increment, *decrement, *read_timeout;
 };
 
 struct hm2_eth_errvals {
     bool error, exceeded;
-    int32_t level, total, limit, increment, decrement, read_timeout;
+    int32_t level, limit, increment, decrement, read_timeout;
+    uint32_t total;
 };
 
 struct hm2_eth_stats {
