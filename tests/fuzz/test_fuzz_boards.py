@@ -2,7 +2,8 @@
 """libFuzzer targets of the board side: the hostmot2 .BIT parser, the IDROM
 probe, the virtual board's firmware image check (hm2 'e' chunks and Pluto-P
 uploads) and its socket protocol (server framing and dispatch, the EPP port
-model).  Each is built with clang (-fsanitize=fuzzer,address,undefined, UB
+model), the Ethernet boards' LBP16 engine and hm2_eth's LBP16 reply checks
+and request builder.  Each is built with clang (-fsanitize=fuzzer,address,undefined, UB
 aborts) and run from its seed corpus in tests/fuzz/corpus/<target> for
 HM_FUZZ_SECONDS (5 in `make test`, 60 in `make fuzz`).  A crash, sanitizer
 report, leak or a 5 s hang fails the test and prints the reproducer.
@@ -66,6 +67,16 @@ PLANT = [
 TARGETS: dict[str, tuple[str, list[str], list[Path]]] = {
     "hm2_bitfile": ("clang", C_FLAGS, [HERE / "fuzz_hm2_bitfile.c", *HM2CORE]),
     "hm2_idrom": ("clang", C_FLAGS, [HERE / "fuzz_hm2_idrom.c", *HM2CORE]),
+    "lbp16_host": (
+        "clang",
+        ["-I", str(DRV / "backends" / "eth")],
+        [HERE / "fuzz_lbp16_host.c", DRV / "backends" / "eth" / "lbp16.c"],
+    ),
+    "lbp16_responder": (
+        "clang++",
+        ["-std=c++17", "-I", str(VB / "eth")],
+        [HERE / "fuzz_lbp16_responder.cpp", VB / "eth" / "lbp16.cpp"],
+    ),
     "vboard_fwimage": (
         "clang++",
         CXX_FLAGS,
