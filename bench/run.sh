@@ -5,6 +5,7 @@
 # anchor (LinuxCNC 2.9 measured on this machine when installed, or the
 # published figure).  Not part of `make test`.  Every folder bench/<area>/
 # has its own run.sh, runnable on its own:
+#   eth         servo-cycle round trip over loopback UDP (virtual 7i96S, LBP16)
 #   components  per-call cost of lut5, mux16, pid, stepgen, encoder, pwmgen vs 2.9
 #   hal         HAL per-function dispatch cost and HAL file load time, vs 2.9
 #   halcompile  a generated component vs a hand-written one vs LinuxCNC, per call
