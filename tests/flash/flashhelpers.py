@@ -19,16 +19,17 @@ if str(ROOT / "tests" / "common") not in sys.path:
 import vboard  # noqa: E402
 
 FLASH_SIZE = 2 << 20  # M25P16
-BOOT, FALLBACK, USER = 0x000000, 0x010000, 0x080000
+BOOT, FALLBACK, USER = 0x000000, 0x010000, 0x100000
 SECTOR = 0x10000
-# The boot block (Spartan-6 configuration packets): sync, GENERAL1/2 = user
-# address 0x080000 with read opcode 0x0B, GENERAL3/4 = fallback 0x010000,
-# CMD = IPROG, NOOPs.
-BOOT_BLOCK = bytes([0xFF] * 12) + bytes.fromhex(
-    "AA995566 3261 0000 3281 0B08 32A1 0000 32C1 0B01 30A1 000E 2000 2000 2000 2000".replace(
-        " ", ""
+# The boot block stock mesaflash writes (tests/data/eth/mesaflash/
+# 7i92-bootblock.hex, recorded by the Ethernet tests): sync, GENERAL1/2 =
+# user address 0x100000 with read opcode 0x0B, GENERAL3/4 = fallback
+# 0x010000, CMD = IPROG, NOOPs.
+BOOT_BLOCK = bytes.fromhex(
+    "".join(
+        (ROOT / "tests" / "data" / "eth" / "mesaflash" / "7i92-bootblock.hex").read_text().split()
     )
-)
+)[:64]
 
 BIT_HEADER = bytes.fromhex("00090FF00FF00FF00FF0000001")
 

@@ -4,7 +4,7 @@ in a file: write / verify / reload / fallback, refusals that leave the
 flash untouched, and a power loss in the middle of an erase.
 
 The reference is the flash layout Mesa's Spartan-6 boards use (boot block
-at 0, fallback image at 0x10000, user image at 0x80000; flashhelpers.py)
+at 0, fallback image at 0x10000, user image at 0x100000; flashhelpers.py)
 and the .BIT rules of the spec: the tests read the flash file itself."""
 
 from __future__ import annotations
@@ -75,7 +75,7 @@ def test_write_verify_reload(sockdir: Path, start_board: StartBoard) -> None:
     (sockdir / "flash.bin").open("r+b").write(b"")  # file exists, mapped by the board
     p = run("--device", "5i25", "--addr", addr(sockdir), "--write", str(bit))
     assert "Boot sector OK" in p.stdout
-    assert "Erasing and programming FLASH memory sectors starting from 0x80000..." in p.stdout
+    assert "Erasing and programming FLASH memory sectors starting from 0x100000..." in p.stdout
     assert "Board configuration updated successfully." in p.stdout
     assert "Board configuration verified successfully." in p.stdout
     assert "Erasing     [########################################] 100% 65536 bytes" in p.stdout
@@ -102,7 +102,7 @@ def test_verify_reports_first_difference(sockdir: Path, start_board: StartBoard)
         f.write(b"\x00")
     p = run("--device", "5i25", "--addr", addr(sockdir), "--verify", str(bit), check=1)
     want = payload()[33]
-    assert f"verification failed at 0x080021 (file: 0x{want:02X}, flash: 0x00)" in p.stderr
+    assert f"verification failed at 0x100021 (file: 0x{want:02X}, flash: 0x00)" in p.stderr
 
 
 def bad_bits(sockdir: Path) -> dict[str, tuple[bytes, str]]:

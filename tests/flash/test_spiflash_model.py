@@ -110,7 +110,7 @@ def test_block_protect_refuses_erase(sockdir: Path, start_board: StartBoard) -> 
         s.frame([0xD8, top >> 16, 0, 0])
         assert s.status() & 3 == 0  # not started, WEL dropped
         s.frame([0x06])
-        s.frame([0xD8, USER >> 16, 0, 0])  # 0x080000 is in the lower half
+        s.frame([0xD8, 0x08, 0, 0])  # 0x080000 is in the lower half
         assert s.status() & 1
 
 

@@ -14,7 +14,7 @@ from flashhelpers import vboard
     "board, extra, message",
     [
         ("5i20", ["--flash", "F"], "is configured by its bus, it has no configuration flash"),
-        ("5i25", ["--flash-part", "w25q64"], "unknown flash part 'w25q64' (known: m25p80"),
+        ("5i25", ["--flash-part", "w25q64"], "unknown flash part 'w25q64' (known: m25p16"),
         ("5i25", ["--flash", "SMALL"], "has 100 bytes, an m25p16 holds 2097152"),
         ("5i25", ["--flash-speedup", "0"], "bad --flash-speedup '0'"),
         ("5i25", ["--firmware", "NOPE"], "firmware NOPE is not built into this vboard"),

@@ -42,9 +42,11 @@ std::string hex(uint32_t v)
 
 std::vector<uint8_t> flash_boot_block(uint32_t user, uint32_t fallback)
 {
-    std::vector<uint8_t> v(12, 0xFF);
+    std::vector<uint8_t> v(10, 0xFF);
     put16(v, kSync0);
     put16(v, kSync1);
+    put16(v, 0x31E1); // register 0x0F
+    put16(v, 0xFFFF);
     put16(v, 0x3261); // GENERAL1: MultiBoot address 15..0
     put16(v, static_cast<uint16_t>(user));
     put16(v, 0x3281); // GENERAL2: read opcode 0x0B, address 23..16
@@ -53,9 +55,15 @@ std::vector<uint8_t> flash_boot_block(uint32_t user, uint32_t fallback)
     put16(v, static_cast<uint16_t>(fallback));
     put16(v, 0x32C1); // GENERAL4: opcode, fallback address 23..16
     put16(v, static_cast<uint16_t>(0x0B00u | ((fallback >> 16) & 0xFFu)));
+    put16(v, 0x30A1); // CMD: NULL
+    put16(v, 0x0000);
+    put16(v, 0x3301); // register 0x18
+    put16(v, 0x2100);
+    put16(v, 0x3201); // register 0x10
+    put16(v, 0x001F);
     put16(v, 0x30A1); // CMD
     put16(v, kCmdIprog);
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < 7; i++)
         put16(v, kNoop);
     return v;
 }

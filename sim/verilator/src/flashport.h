@@ -33,7 +33,7 @@ namespace vb {
 // The layout Mesa's Spartan-6 boards use.
 constexpr uint32_t kFlashBootAddr = 0x000000;
 constexpr uint32_t kFlashFallbackAddr = 0x010000;
-constexpr uint32_t kFlashUserAddr = 0x080000;
+constexpr uint32_t kFlashUserAddr = 0x100000; // mesaflash's user area (16 Mbit)
 constexpr uint32_t kFlashRegCtrl = 0x0070;
 constexpr uint32_t kFlashRegData = 0x0074;
 constexpr uint32_t kFlashRegIcap = 0x0078;
@@ -46,8 +46,10 @@ enum : uint32_t {
     BOOTSTS_CRC_ERROR = 1u << 5,
 };
 
-// The boot block: padding, sync, MultiBoot address = user, fallback address,
-// IPROG.  `bytes` are as stored in the flash (big-endian 16-bit words).
+// The boot block mesaflash writes (recorded in tests/data/eth/mesaflash):
+// padding, sync, type-1 writes (0x0F = 0xFFFF, GENERAL1..4 = MultiBoot
+// address `user` and `fallback` with read opcode 0x0B, CMD = 0, 0x18 =
+// 0x2100, 0x10 = 0x001F), CMD = IPROG, seven NOOPs: 64 bytes.  `bytes` are as stored in the flash (big-endian 16-bit words).
 std::vector<uint8_t> flash_boot_block(uint32_t user, uint32_t fallback);
 
 // What a configuration attempt decided.

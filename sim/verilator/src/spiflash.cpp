@@ -15,8 +15,6 @@ namespace vb {
 namespace {
 // Typical times from the parts' data sheets (ST/Micron M25Pxx).
 const FlashPart kParts[] = {
-    {"m25p80", {0x20, 0x20, 0x14}, 0x13, 1u << 20, 0x10000, 256, 640000, 600000000ull,
-     8000000000ull, 1500000},
     {"m25p16", {0x20, 0x20, 0x15}, 0x14, 2u << 20, 0x10000, 256, 640000, 600000000ull,
      13000000000ull, 1500000},
     {"m25p32", {0x20, 0x20, 0x16}, 0x15, 4u << 20, 0x10000, 256, 640000, 600000000ull,

@@ -3,7 +3,7 @@
  * cfgflash.h - the SPI configuration flash of a Mesa board, reached through
  * the hm2 firmware's flash access registers over any llio (PCI window,
  * virtual board), and the Spartan-6 flash layout mesaflash uses: boot block
- * at 0, fallback image at 0x10000, user image at 0x80000.  See
+ * at 0, fallback image at 0x10000, user image at 0x100000.  See
  * docs/hm2flash.md.  No HAL calls.
  *
  * Every function returns 0 or a negative errno with the reason in io->err.
@@ -27,7 +27,7 @@ extern "C" {
 
 #define HM2_FLASH_BOOT_ADDR 0x000000u
 #define HM2_FLASH_FALLBACK_ADDR 0x010000u
-#define HM2_FLASH_USER_ADDR 0x080000u
+#define HM2_FLASH_USER_ADDR 0x100000u
 #define HM2_FLASH_SECTOR 0x10000u
 #define HM2_FLASH_PAGE 256u
 
@@ -75,7 +75,7 @@ int hm2_flash_write(struct hm2_flash_io *io, uint32_t addr, const uint8_t *data,
 int hm2_flash_verify(struct hm2_flash_io *io, uint32_t addr, const uint8_t *data, uint32_t n,
                      uint32_t *bad_addr);
 
-/* The boot block mesaflash writes for Spartan-6 boards (user 0x80000,
+/* The boot block mesaflash writes for Spartan-6 boards (user 0x100000,
  * fallback 0x10000): its bytes, and whether the flash holds it. */
 const uint8_t *hm2_flash_boot_block(size_t *len);
 int hm2_flash_boot_block_ok(struct hm2_flash_io *io, int *ok);
