@@ -75,9 +75,12 @@ def test_write_verify_reload(sockdir: Path, start_board: StartBoard) -> None:
     (sockdir / "flash.bin").open("r+b").write(b"")  # file exists, mapped by the board
     p = run("--device", "5i25", "--addr", addr(sockdir), "--write", str(bit))
     assert "Boot sector OK" in p.stdout
-    assert "Erasing and programming FLASH memory sectors starting from 0x100000..." in p.stdout
+    assert "FLASH memory sectors to write: 1, max sectors in area: 16" in p.stdout
+    assert "Erasing FLASH memory sectors starting from 0x100000..." in p.stdout
+    assert "Programming FLASH memory sectors starting from 0x100000..." in p.stdout
+    assert "You must power cycle the hardware or use the --reload command" in p.stdout
     assert "Board configuration updated successfully." in p.stdout
-    assert "Board configuration verified successfully." in p.stdout
+    assert "Board FLASH memory verified successfully." in p.stdout
     assert "Erasing     [########################################] 100% 65536 bytes" in p.stdout
     img = payload()
     after = flash(sockdir)
@@ -87,7 +90,7 @@ def test_write_verify_reload(sockdir: Path, start_board: StartBoard) -> None:
     assert after[:USER] == before[:USER]
     assert after[USER + SECTOR :] == before[USER + SECTOR :]
     p = run("--device", "5i25", "--addr", addr(sockdir), "--verify", str(bit))
-    assert "Board configuration verified successfully." in p.stdout
+    assert "Board FLASH memory verified successfully." in p.stdout
     p = run("--device", "5i25", "--addr", addr(sockdir), "--reload")
     assert "Board reloaded from the flash image: firmware 7I76x2" in p.stdout
     assert "Boot status: 0x05 valid reloaded" in p.stdout

@@ -210,6 +210,10 @@ static void progress_cb(void *ctx, const char *phase, uint32_t done, uint32_t to
     struct hm2flash_board *bd = ctx;
     if (bd->phase && strcmp(bd->phase, phase) != 0) {
         print_line(bd, 1);
+        /* mesaflash's header of the write's second phase (the caller
+         * prints the first one before it starts) */
+        if (strcmp(phase, "Programming") == 0)
+            printf("%s FLASH memory sectors starting from 0x%X...\n", phase, bd->area_addr);
         bd->phase_start_ns = hm2flash_now_ns(bd);
     }
     bd->phase = phase;

@@ -233,7 +233,7 @@ static int do_verify(struct hm2flash_board *bd, const struct opts *o, const stru
         fprintf(stderr, "hm2flash: Error: %s\n", bd->io.err);
         return 1;
     }
-    printf("Board configuration verified successfully.\n");
+    printf("Board FLASH memory verified successfully.\n");
     return 0;
 }
 
@@ -250,6 +250,7 @@ static int load_checked(struct hm2flash_board *bd, const struct opts *o, struct 
         b->buf = NULL;
         return -1;
     }
+    printf("  File type: Xilinx bit file\n");
     return 0;
 }
 
@@ -264,7 +265,11 @@ static int cmd_write(struct hm2flash_board *bd, const struct opts *o)
     if (o->fallback && check_boot_block(bd, &(struct opts){.fix_boot = 1}))
         goto out;
     uint32_t at = area_addr(o);
-    printf("Erasing and programming FLASH memory sectors starting from 0x%X...\n", at);
+    printf("FLASH memory sectors to write: %u, max sectors in area: %u\n",
+           (b.bf.size + HM2_FLASH_SECTOR - 1) / HM2_FLASH_SECTOR,
+           area_size(o, &bd->io) / HM2_FLASH_SECTOR);
+    bd->area_addr = at;
+    printf("Erasing FLASH memory sectors starting from 0x%X...\n", at);
     hm2flash_progress_begin(bd);
     int r = hm2_flash_write(&bd->io, at, b.bf.data, b.bf.size);
     hm2flash_progress_end(bd);
@@ -274,6 +279,9 @@ static int cmd_write(struct hm2flash_board *bd, const struct opts *o)
     }
     printf("Board configuration updated successfully.\n");
     rc = o->no_verify ? 0 : do_verify(bd, o, &b);
+    if (!rc)
+        printf("\nYou must power cycle the hardware or use the --reload command to load a new "
+               "firmware.\n");
 out:
     free(b.buf);
     return rc;

@@ -24,6 +24,7 @@ struct hm2flash_board {
     /* progress display */
     int tty;
     const char *phase;
+    uint32_t area_addr;     /* for the phase headers */
     uint64_t phase_start_ns;
     uint32_t last_done, last_total;
     int last_pct;
