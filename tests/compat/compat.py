@@ -135,7 +135,9 @@ class Hardware:
         if mod == "hm2_pci":
             return self._hm2_pci(args, action)
         if mod == "hm2_7i43":
-            sock = self.board("7i43")
+            # the 200K board for a 200K firmware (hm2/7i43-2/), else the 400K
+            small = any("firmware=hm2/7i43-2/" in a for a in args)
+            sock = self.board("7i43-2" if small else "7i43")
             keep = [a for a in args if not a.startswith(("ioaddr", "port="))]
             return _rewrite(["loadrt", "hm2_7i43", f"port=sim:{sock}", *keep], "7i43 on vboard")
         if mod in ("pluto_servo", "pluto_step"):

@@ -114,6 +114,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--bit", type=Path, help="write the .BIT file here")
     ap.add_argument("--header", type=Path, help="write the C++ firmware-info header here")
     ap.add_argument("--prefix", default="", help="identifier used in the header")
+    ap.add_argument(
+        "--part",
+        help="FPGA part the .BIT names (default: the board's; the 7i43's 200K part "
+        "is 3s200tq144)",
+    )
+    ap.add_argument(
+        "--image-board",
+        help="board the image is for (default: the board's name; the 200K 7i43 is 7i43-2)",
+    )
     args = ap.parse_args(argv)
     try:
         desc = json.loads(args.json.read_text())
@@ -121,9 +130,10 @@ def main(argv: list[str] | None = None) -> int:
         idrom = args.idrom or args.json.with_name(f"{fw}.idrom.hex")
         crc = idrom_crc(idrom)
         if args.bit:
-            image = make_image(desc["board"]["name"], fw, crc)
+            image = make_image(args.image_board or desc["board"]["name"], fw, crc)
             args.bit.parent.mkdir(parents=True, exist_ok=True)
-            args.bit.write_bytes(make_bit(desc["board"]["fpga_part"], fw, image))
+            part = args.part or desc["board"]["fpga_part"]
+            args.bit.write_bytes(make_bit(part, fw, image))
         if args.header:
             args.header.parent.mkdir(parents=True, exist_ok=True)
             args.header.write_text(header_text(desc, crc, args.prefix or fw))

@@ -26,6 +26,7 @@ foreach(fw pluto_servo pluto_step)
     list(APPEND VB_PLUTO_RBF ${rbf})
 endforeach()
 add_custom_target(vboard_pluto_firmware ALL DEPENDS ${VB_PLUTO_RBF})
+set(VB_7I43_SIZED_BITS "")
 foreach(fw svst4_4 sv8)
     string(TOUPPER ${fw} FW)
     set(top hm2_7i43_${fw})
@@ -36,7 +37,24 @@ foreach(fw svst4_4 sv8)
         LIBRARY_DIRS ${VB_HDL}/hostmot2 ${VB_HDL}/common
         DEPENDS ${gen}/${top}_inc.v ${VB_HDL_SOURCES})
     list(APPEND VBOARD_LIBS V${top})
+    # Mesa's firmware packages put each 7i43 firmware in a directory per FPGA
+    # size: hm2/7i43-4/ for the 400K part (the same file as hm2/7i43/) and
+    # hm2/7i43-2/ for the 200K part (3s200tq144; its image is for the board
+    # `vboard --board 7i43-2`).  LinuxCNC's sample configurations name them.
+    set(bit4 ${HM_FIRMWARE_DIR}/hm2/7i43-4/${FW}.BIT)
+    set(bit2 ${HM_FIRMWARE_DIR}/hm2/7i43-2/${FW}.BIT)
+    add_custom_command(
+        OUTPUT ${bit4} ${bit2}
+        COMMAND ${Python3_EXECUTABLE} ${VBFW} ${gen}/${FW}.json --bit ${bit4}
+        COMMAND ${Python3_EXECUTABLE} ${VBFW} ${gen}/${FW}.json --bit ${bit2}
+                --part 3s200tq144 --image-board 7i43-2
+        DEPENDS ${gen}/${FW}.json ${gen}/${FW}.idrom.hex ${VBFW}
+        COMMENT "vbfw 7i43-4/${FW}.BIT 7i43-2/${FW}.BIT"
+        VERBATIM)
+    list(APPEND VB_7I43_SIZED_BITS ${bit4} ${bit2})
 endforeach()
+add_custom_target(vboard_7i43_sized_firmware ALL DEPENDS ${VB_7I43_SIZED_BITS})
+add_dependencies(vboard_7i43_sized_firmware hm2gen_outputs)
 list(APPEND VBOARD_SOURCES ${VB_EPP_DIR}/epp_port_board.cpp ${VB_EPP_DIR}/epp_fpga_board.cpp
                            ${VB_EPP_DIR}/pluto_board.cpp ${VB_EPP_DIR}/hm2_epp_board.cpp)
 list(APPEND VBOARD_FACTORIES vb_factory_pluto vb_factory_hm2_epp)

@@ -11,7 +11,10 @@
 // the configuration), to the data register clocks one bitstream byte in
 // (the driver sends the .BIT 'e' chunk bit-reversed, as SelectMAP wants it;
 // the board reverses it back); a read of the control register gives DONE in
-// D0, of the data register the FPGA size (1 = 400K).  After a whole image
+// D0, of the data register the FPGA size (1 = 400K).  `--board 7i43` is the
+// 400K board (3s400tq144), `--board 7i43-2` the 200K one (3s200tq144): its
+// size bit reads 0 and it takes only images made for it (hm2/7i43-2/*.BIT),
+// as a real 3s200 refuses a 3s400 bitstream.  After a whole image
 // (fwimage.h) the board checks it and starts that firmware (DONE = 1); a
 // bad image leaves it blank and says why on stderr.  Running, the firmware
 // answers the EPP cycles pin-level; its `reconfig` pulse (data 0x5A at
@@ -93,15 +96,27 @@ uint8_t reverse8(uint8_t b)
     return static_cast<uint8_t>((b & 0xAA) >> 1 | (b & 0x55) << 1);
 }
 
+// The two sizes of the board: its name, FPGA part and CPLD size bit.
+struct Hm2EppSize {
+    const char *board;
+    const char *fpga_part;
+    uint8_t size_bit;
+};
+const Hm2EppSize kSizes[] = {
+    {"7i43", "3s400tq144", 1},
+    {"7i43-2", "3s200tq144", 0},
+};
+
 class Hm2EppBoard final : public EppFpgaBoard {
   public:
-    Hm2EppBoard()
-        : EppFpgaBoard("7i43", kIoWidth, "the 7i43 is configured through its CPLD over EPP",
-                       "IDROM CRC")
+    explicit Hm2EppBoard(const Hm2EppSize &size)
+        : EppFpgaBoard(size.board, kIoWidth, "the 7i43 is configured through its CPLD over EPP",
+                       "IDROM CRC"),
+          size_(size)
     {
     }
 
-    std::string fpga_part() const override { return kFws[0].info->fpga_part; }
+    std::string fpga_part() const override { return size_.fpga_part; }
     uint32_t bus() const override { return VB_BUS_EPP_HM2; }
     uint32_t clock_low_hz() const override { return fw_ < 0 ? 0 : kFws[fw_].info->clock_low_hz; }
     uint32_t clock_high_hz() const override
@@ -135,8 +150,8 @@ class Hm2EppBoard final : public EppFpgaBoard {
     {
         if (!out_.reconfig)
             return;
-        std::fprintf(stderr, "vboard: 7i43: RECONFIG from firmware %s: FPGA cleared\n",
-                     fw_name(fw_));
+        std::fprintf(stderr, "vboard: %s: RECONFIG from firmware %s: FPGA cleared\n",
+                     size_.board, fw_name(fw_));
         unconfigure();
         cfg_.clear();
         cfg_done_ = false;
@@ -166,7 +181,7 @@ class Hm2EppBoard final : public EppFpgaBoard {
             return true;
         }
         if (!write) {
-            r = 1; // 400K part
+            r = size_.size_bit; // 1: 400K part, 0: 200K part
             return true;
         }
         if (prog_b_ && !cfg_done_) {
@@ -180,6 +195,7 @@ class Hm2EppBoard final : public EppFpgaBoard {
     }
 
   private:
+    const Hm2EppSize &size_;
     uint8_t reg_ = 0;
     bool prog_b_ = true, cfg_done_ = false;
     std::vector<uint8_t> cfg_;
@@ -187,14 +203,18 @@ class Hm2EppBoard final : public EppFpgaBoard {
 
 std::vector<std::string> hm2_epp_boards()
 {
-    return {"7i43"};
+    std::vector<std::string> v;
+    for (const Hm2EppSize &s : kSizes)
+        v.emplace_back(s.board);
+    return v;
 }
 
 std::unique_ptr<Board> make_hm2_epp_board(const std::string &board)
 {
-    if (board != "7i43")
-        return nullptr;
-    return std::make_unique<Hm2EppBoard>();
+    for (const Hm2EppSize &s : kSizes)
+        if (board == s.board)
+            return std::make_unique<Hm2EppBoard>(s);
+    return nullptr;
 }
 
 } // namespace
