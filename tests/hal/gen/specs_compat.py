@@ -310,3 +310,173 @@ spec(
         note="every axis's pins at its own switch positions",
     )
 )
+
+_EPA_IN = [("active", "b"), ("is-on", "b"), ("enable-in", "b"), ("radius-ref", "f")]
+_EPA_IN += [("angle", "f"), ("start-angle", "f"), ("fnum", "s"), ("rfraction", "f")]
+_EPA_IN += [("fmult", "f"), ("k", "u")]
+_EPA_OUT = [("is-off", "b"), ("enable-out", "b"), ("clear", "b"), ("kcounts", "s")]
+_EPA_OUT += [("kreciprocal", "f"), ("eoffset-dbg", "f"), ("state-dbg", "u")]
+
+
+def _epa_rows(rng: random.Random) -> list[Row]:
+    """Columns active, is-on, enable-in, radius-ref, angle, start-angle, fnum,
+    rfraction, fmult, k: machine off and on, enable with and without
+    motion's eoffset-active, each function over angle sweeps (both ways,
+    negative and big angles, start angles), stopping until eoffset-active
+    drops, bad polygon sides and fnum, k 0, NaN and infinities, random rows."""
+    rows: list[Row] = []
+
+    def seg(act: int, on: int, en: int, r: float, angs: list[float], **kw: float) -> None:
+        for a in angs:
+            rows.append(
+                [float(act), float(on), float(en), r, a, kw.get("sa", 0.0), kw.get("fn", 0.0)]
+                + [kw.get("rf", 0.1), kw.get("fm", 6.0), kw.get("k", 10000.0)]
+            )
+
+    sweep = [float(a) for a in range(-30, 400, 7)]
+    seg(0, 0, 0, 1.0, [0.0] * 3)
+    seg(0, 0, 1, 1.0, [10.0] * 3)  # enabled while the machine is off
+    seg(0, 1, 1, 1.0, [10.0] * 3)
+    seg(0, 1, 0, 1.0, [10.0] * 3)
+    seg(0, 1, 1, 1.0, [10.0] * 3)  # rising enable, eoffset not active yet
+    for fn, fm in ((0, 6.0), (1, 6.0), (2, 6.0), (3, 6.0), (0, 3.0), (1, 4.0), (2, 2.5)):
+        seg(1, 1, 1, 2.0, sweep, fn=fn, fm=fm, rf=0.2)
+    seg(1, 1, 1, 2.0, sweep[::-3], fn=2, sa=45.0, rf=0.3)
+    seg(1, 1, 1, 5.0, [-720.0, -365.0, 1e6, 3600.5, 1e-9], fn=0, sa=-30.0)
+    seg(1, 1, 1, 5.0, [30.0, 31.0], fn=2, k=0.0)
+    seg(1, 1, 1, 5.0, [30.0, 31.0], fn=2, k=1.0)
+    seg(1, 1, 1, 5.0, [30.0, 31.0], fn=2, k=123456.0)
+    seg(1, 1, 1, 1e6, [30.0, 31.0], fn=2, rf=1.0)  # beyond an s32
+    seg(1, 1, 1, 5.0, [30.0, 31.0], fn=7)
+    seg(1, 1, 1, 5.0, [30.0, 31.0], fn=-1)
+    seg(1, 1, 1, 5.0, [30.0, NAN, INF, -INF, 32.0], fn=2)
+    seg(1, 1, 1, NAN, [30.0, 31.0], fn=2)
+    seg(1, 1, 1, 2.0, [30.0, 31.0], fn=2, rf=NAN)
+    seg(1, 1, 0, 2.0, [40.0] * 3, fn=2)  # stopping: offset returns while active
+    seg(0, 1, 0, 2.0, [40.0] * 3, fn=2)  # motion reports the offset gone
+    seg(0, 1, 1, 2.0, [40.0] * 2, fn=2)
+    seg(1, 1, 1, 2.0, [40.0, 41.0], fn=0, fm=2.0)  # a polygon of 2 sides
+    seg(1, 1, 1, 2.0, [42.0, 43.0], fn=0, fm=6.0)  # corrected: no effect until re-enabled
+    seg(1, 1, 0, 2.0, [43.0] * 2, fn=0)
+    seg(0, 1, 0, 2.0, [43.0] * 2, fn=0)
+    seg(0, 1, 1, 2.0, [43.0] * 2, fn=0)
+    seg(1, 1, 1, 2.0, [44.0, 45.0], fn=1, fm=-3.0)
+    seg(1, 1, 1, 2.0, [44.0, 45.0], fn=2, fm=0.0)
+    seg(1, 0, 1, 2.0, [46.0] * 3, fn=2)  # machine turned off while running
+    seg(0, 0, 1, 2.0, [46.0] * 2, fn=2)
+    seg(0, 1, 1, 2.0, [46.0] * 2, fn=2)
+    seg(1, 1, 1, 2.0, [46.0] * 2, fn=2)
+    for _ in range(40):
+        seg(
+            int(rng.random() < 0.8), int(rng.random() < 0.9), int(rng.random() < 0.8),
+            round(rng.uniform(0, 10), 3), [round(rng.uniform(-400, 400), 3)],
+            sa=round(rng.uniform(-90, 90), 2), fn=float(rng.randrange(4)),
+            rf=round(rng.uniform(0, 0.5), 3), fm=float(rng.randrange(3, 9)),
+        )  # fmt: skip
+    return rows
+
+
+spec(
+    Spec(
+        "eoffset_per_angle",
+        _EPA_IN,
+        _EPA_OUT,
+        _epa_rows,
+        setps=[{}],
+        prefix="eoffset-per-angle",
+        note="offset by function and angle through the enable/active/is-on states",
+    )
+)
+
+
+def _epa_state_rows(rng: random.Random) -> list[Row]:
+    """The state machine and edge values: polygons of 2.5, just over 2 and
+    7.5 sides, bad sides (<= 2) and NaN or infinite fmult per function,
+    stopping (enable-in low, machine off), what a bad polygon needs before
+    the next start (enable-in toggled), the square wave's edges, k 0, 3
+    and 2^32-1, infinities and NaN in the other inputs, angles on the
+    sides' edges (negative ones fold differently)."""
+    rows: list[Row] = []
+
+    def r(
+        act: int, on: int, en: int, rad: float, a: float, fn: int, fm: float, **kw: float
+    ) -> None:
+        rows.append(
+            [float(act), float(on), float(en), rad, a, kw.get("sa", 0.0), float(fn)]
+            + [kw.get("rf", 0.2), fm, kw.get("k", 10000.0)]
+        )
+
+    def stop_start(fn: int) -> None:
+        r(0, 1, 0, 2, 20, fn, 6)
+        r(0, 1, 0, 2, 20, fn, 6)
+        r(0, 1, 0, 2, 20, fn, 6)
+        r(0, 1, 1, 2, 20, 2, 6)
+        r(0, 1, 1, 2, 20, 2, 6)
+
+    r(0, 1, 0, 1, 0, 0, 6, rf=0.1)
+    r(0, 1, 1, 1, 0, 0, 6, rf=0.1)
+    for fm in (2.5, 2.0001, 3.0, 7.5):
+        r(1, 1, 1, 2, 20, 1, fm)
+        r(1, 1, 1, 2, -50, 1, fm)
+    for a in (-70, -10, 50, -130, -100, -40, -31, -29, 31, 29, 89, 91, -89, -91, -149, -151):
+        r(1, 1, 1, 2, a, 0, 6)
+    r(1, 1, 1, 2, -37.911, 0, 6, sa=32.1)
+    r(1, 1, 1, 2, 0, 0, 6, sa=70)
+    for a in (-60, -45.1, -45, -44.9, -15.1, -15, -14.9, 0, 14.9, 15, 45, 45.1, 75, 90):
+        r(1, 1, 1, 2, a, 3, 6)
+    for fn, fm in ((1, 2.0), (2, 0.0), (2, -1.0), (3, 0.0), (3, -1.0), (0, NAN), (1, NAN)):
+        r(1, 1, 1, 2, 20, fn, fm)
+        r(1, 1, 1, 2, 20, fn, fm)
+        stop_start(fn)
+    for fn, fm in ((2, NAN), (3, NAN), (0, -3.0), (1, INF), (0, INF), (2, 1e-300), (2, 1e9)):
+        r(1, 1, 1, 2, 20, fn, fm)
+        r(1, 1, 1, 2, 20, fn, fm)
+        stop_start(fn)
+    r(1, 1, 1, 2, 20, 0, 1.0)  # a bad polygon, then the machine off and on
+    r(1, 1, 1, 2, 20, 0, 6)
+    r(1, 0, 1, 2, 20, 0, 6)
+    r(1, 1, 0, 2, 20, 0, 6)
+    r(1, 1, 0, 2, 20, 0, 6)
+    r(1, 1, 1, 2, 20, 2, 6)
+    r(1, 1, 1, 2, 20, 2, 6)
+    r(1, 1, 0, 2, 20, 2, 6)  # stop; enable back while stopping
+    r(1, 1, 1, 2, 20, 2, 6)
+    r(0, 1, 1, 2, 20, 2, 6)
+    r(0, 1, 1, 2, 20, 2, 6)
+    r(0, 1, 1, 2, 20, 2, 6)
+    r(0, 1, 0, 2, 20, 2, 6)  # stop, machine off while stopping
+    r(0, 0, 0, 2, 20, 2, 6)
+    r(0, 1, 0, 2, 20, 2, 6)
+    r(0, 1, 1, 2, 20, 2, 6)
+    r(0, 1, 1, 2, 20, 2, 6)
+    for a in (0.0, 7.5, 15.0, 22.5, 37.5, 52.5, 1e-7, 59.9999999, 390.0, 285.0, 110.0):
+        for fn in (2, 3, 1, 0):
+            r(0, 1, 1, 3, a, fn, 6, rf=0.3)
+    for k in (0.0, 4294967295.0, 3.0, 2147483648.0, 1.0):
+        r(0, 1, 1, 3, 20, 2, 6, rf=0.3, k=k)
+    r(0, 1, 1, 3, 20, 2, 6, rf=INF)
+    r(0, 1, 1, -2, 20, 0, 6)
+    r(0, 1, 1, 0, 20, 0, 6)
+    r(0, 1, 1, INF, 20, 0, 6)
+    r(0, 1, 1, 3, 20, 0, 6, rf=-0.2)
+    r(0, 1, 1, 3, 20, 2, 6, sa=NAN)
+    for a in (1.3e11 + 20, 1e15 + 20, -1e12 - 20):  # beyond an int's count of sides
+        r(0, 1, 1, 3, a, 0, 6)
+        r(0, 1, 1, 3, a, 1, 6)
+    r(0, 1, 1, 3, -1e20, 2, 6)
+    r(0, 1, 1, 3, 20, 2, 6)
+    return rows
+
+
+spec(
+    Spec(
+        "eoffset_per_angle",
+        _EPA_IN,
+        _EPA_OUT,
+        _epa_state_rows,
+        setps=[{}],
+        prefix="eoffset-per-angle",
+        test="eoffset_per_angle-states",
+        note="states, bad polygons, edges of the sides and of the square wave, odd k",
+    )
+)
