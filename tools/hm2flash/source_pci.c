@@ -17,10 +17,6 @@
 
 #include "hm2_pci_core.h"
 
-struct flash_pci {
-    struct hm2_pci_board board;
-    int was_enabled;
-};
 
 static void pci_log(void *ctx, int level, const char *line)
 {
@@ -29,19 +25,13 @@ static void pci_log(void *ctx, int level, const char *line)
         fprintf(stderr, "hm2flash: %s\n", line);
 }
 
-static int addr_matches(const char *want, const char *have)
-{
-    return !want[0] || strcmp(want, have) == 0 ||
-           (strncmp(have, "0000:", 5) == 0 && strcmp(want, have + 5) == 0);
-}
-
 int hm2flash_open_pci(const char *addr, const char *board, hm2_llio_t **llio, void **handle,
                       char *why, size_t whylen)
 {
     char err[PCI_SYSFS_PATH_LEN + 64];
     struct pci_sysfs_dev *devs = NULL;
     int n = 0, pick = -1, r;
-    struct flash_pci *p = calloc(1, sizeof(*p));
+    struct hm2_pci_tool_board *p = calloc(1, sizeof(*p));
     if (!p) {
         snprintf(why, whylen, "out of memory");
         return -ENOMEM;
@@ -53,7 +43,8 @@ int hm2flash_open_pci(const char *addr, const char *board, hm2_llio_t **llio, vo
     }
     for (int i = 0; i < n && pick < 0; i++) {
         const struct hm2_pci_id *id = hm2_pci_match(&devs[i]);
-        if (id && addr_matches(addr, devs[i].addr) && strcasecmp(id->model, board) == 0)
+        int here = !addr[0] || pci_sysfs_same_addr(addr, devs[i].addr);
+        if (id && here && strcasecmp(id->model, board) == 0)
             pick = i;
     }
     if (pick < 0) {
@@ -63,19 +54,9 @@ int hm2flash_open_pci(const char *addr, const char *board, hm2_llio_t **llio, vo
         r = -ENODEV;
         goto fail;
     }
-    r = pci_sysfs_enable(&devs[pick], &p->was_enabled, err, sizeof(err));
-    if (r) {
-        snprintf(why, whylen, "cannot enable PCI device %s: %s", devs[pick].addr, err);
+    r = hm2_pci_tool_open(p, &devs[pick], 0, pci_log, NULL, why, whylen);
+    if (r)
         goto fail;
-    }
-    r = hm2_pci_setup(&p->board, &devs[pick], hm2_pci_match(&devs[pick]), 0, NULL, NULL,
-                      pci_log, NULL);
-    if (r) {
-        if (!p->was_enabled)
-            pci_sysfs_disable(&devs[pick]);
-        snprintf(why, whylen, "cannot map the hm2 window of %s", devs[pick].addr);
-        goto fail;
-    }
     free(devs);
     *llio = &p->board.llio;
     *handle = p;
@@ -88,11 +69,9 @@ fail:
 
 void hm2flash_close_pci(void *handle)
 {
-    struct flash_pci *p = handle;
+    struct hm2_pci_tool_board *p = handle;
     if (!p)
         return;
-    hm2_pci_teardown(&p->board);
-    if (!p->was_enabled)
-        pci_sysfs_disable(&p->board.dev);
+    hm2_pci_tool_close(p);
     free(p);
 }

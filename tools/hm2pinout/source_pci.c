@@ -17,10 +17,6 @@
 
 #include "hm2_pci_core.h"
 
-struct pinout_pci {
-    struct hm2_pci_board board;
-    int was_enabled;
-};
 
 static void pci_log(void *ctx, int level, const char *line)
 {
@@ -29,19 +25,11 @@ static void pci_log(void *ctx, int level, const char *line)
         fprintf(stderr, "hm2pinout: %s\n", line);
 }
 
-/* "01:00.0" and "0000:01:00.0" name the same device */
-static int same_addr(const char *want, const char *have)
-{
-    if (strcmp(want, have) == 0)
-        return 1;
-    return strncmp(have, "0000:", 5) == 0 && strcmp(want, have + 5) == 0;
-}
-
 static int pick(const struct pci_sysfs_dev *devs, int n, const char *addr)
 {
     int seen_other = -1;
     for (int i = 0; i < n; i++) {
-        if (addr[0] && !same_addr(addr, devs[i].addr))
+        if (addr[0] && !pci_sysfs_same_addr(addr, devs[i].addr))
             continue;
         if (hm2_pci_match(&devs[i]))
             return i;
@@ -67,7 +55,7 @@ int hm2pinout_open_pci(const char *addr, int index, hm2_llio_t **llio, void **ha
     char err[PCI_SYSFS_PATH_LEN + 64];
     struct pci_sysfs_dev *devs = NULL;
     int n, r;
-    struct pinout_pci *p = calloc(1, sizeof(*p));
+    struct hm2_pci_tool_board *p = calloc(1, sizeof(*p));
     if (!p) {
         fprintf(stderr, "hm2pinout: out of memory\n");
         return -ENOMEM;
@@ -82,16 +70,10 @@ int hm2pinout_open_pci(const char *addr, int index, hm2_llio_t **llio, void **ha
         r = -ENODEV;
         goto fail;
     }
-    r = pci_sysfs_enable(&devs[i], &p->was_enabled, err, sizeof(err));
+    char why[PCI_SYSFS_PATH_LEN + 128];
+    r = hm2_pci_tool_open(p, &devs[i], index, pci_log, NULL, why, sizeof(why));
     if (r) {
-        fprintf(stderr, "hm2pinout: cannot enable PCI device %s: %s\n", devs[i].addr, err);
-        goto fail;
-    }
-    r = hm2_pci_setup(&p->board, &devs[i], hm2_pci_match(&devs[i]), index, NULL, NULL, pci_log,
-                      NULL);
-    if (r) {
-        if (!p->was_enabled)
-            pci_sysfs_disable(&devs[i]);
+        fprintf(stderr, "hm2pinout: %s\n", why);
         goto fail;
     }
     /* report what runs now: no reset, no programming */
@@ -109,11 +91,9 @@ fail:
 
 void hm2pinout_close_pci(void *handle)
 {
-    struct pinout_pci *p = handle;
+    struct hm2_pci_tool_board *p = handle;
     if (!p)
         return;
-    hm2_pci_teardown(&p->board);
-    if (!p->was_enabled)
-        pci_sysfs_disable(&p->board.dev);
+    hm2_pci_tool_close(p);
     free(p);
 }

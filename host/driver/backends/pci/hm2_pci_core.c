@@ -412,3 +412,28 @@ void hm2_pci_teardown(struct hm2_pci_board *b)
     pci_bar_close(&b->data);
     b->plx = NULL;
 }
+
+int hm2_pci_tool_open(struct hm2_pci_tool_board *t, const struct pci_sysfs_dev *dev,
+                      int type_index, hm2_log_fn log, void *log_ctx, char *why, size_t whylen)
+{
+    char err[PCI_SYSFS_PATH_LEN + 64];
+    int r = pci_sysfs_enable(dev, &t->was_enabled, err, sizeof(err));
+    if (r) {
+        snprintf(why, whylen, "cannot enable PCI device %s: %s", dev->addr, err);
+        return r;
+    }
+    r = hm2_pci_setup(&t->board, dev, hm2_pci_match(dev), type_index, NULL, NULL, log, log_ctx);
+    if (r) {
+        if (!t->was_enabled)
+            pci_sysfs_disable(dev);
+        snprintf(why, whylen, "cannot map the hm2 window of %s", dev->addr);
+    }
+    return r;
+}
+
+void hm2_pci_tool_close(struct hm2_pci_tool_board *t)
+{
+    hm2_pci_teardown(&t->board);
+    if (!t->was_enabled)
+        pci_sysfs_disable(&t->board.dev);
+}

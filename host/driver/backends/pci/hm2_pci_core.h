@@ -96,6 +96,18 @@ int hm2_pci_setup(struct hm2_pci_board *b, const struct pci_sysfs_dev *dev,
 /* Unmap and close what hm2_pci_setup opened (safe to call twice). */
 void hm2_pci_teardown(struct hm2_pci_board *b);
 
+/* One board opened by a command-line tool (hm2pinout, hm2flash): the
+ * device enabled when it was not (remembered, so closing restores it),
+ * then hm2_pci_setup with the default bridge access.  0 or -errno with the
+ * reason in why; nothing is left enabled or mapped on failure. */
+struct hm2_pci_tool_board {
+    struct hm2_pci_board board;
+    int was_enabled;
+};
+int hm2_pci_tool_open(struct hm2_pci_tool_board *t, const struct pci_sysfs_dev *dev,
+                      int type_index, hm2_log_fn log, void *log_ctx, char *why, size_t whylen);
+void hm2_pci_tool_close(struct hm2_pci_tool_board *t);
+
 /* Per-type board counts for llio names: index of the next board of id's
  * model given the ids already set up (ids[0..n-1]). */
 int hm2_pci_type_index(const struct hm2_pci_id *const *ids, int n, const struct hm2_pci_id *id);

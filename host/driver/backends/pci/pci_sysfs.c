@@ -311,3 +311,10 @@ int pci_sysfs_disable(const struct pci_sysfs_dev *dev)
     close(fd);
     return r;
 }
+
+int pci_sysfs_same_addr(const char *want, const char *have)
+{
+    if (strcmp(want, have) == 0)
+        return 1;
+    return strncmp(have, "0000:", 5) == 0 && strcmp(want, have + 5) == 0;
+}

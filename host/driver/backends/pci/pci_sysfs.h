@@ -80,6 +80,10 @@ int pci_bar_write8(struct pci_bar *b, uint32_t off, uint8_t val);
 int pci_sysfs_enable(const struct pci_sysfs_dev *dev, int *was, char *err, size_t errlen);
 int pci_sysfs_disable(const struct pci_sysfs_dev *dev);
 
+/* Whether a user's address names device address have: equal, or want
+ * without the "0000:" domain ("01:00.0" is "0000:01:00.0"). */
+int pci_sysfs_same_addr(const char *want, const char *have);
+
 #ifdef __cplusplus
 }
 #endif
