@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /* Message formatting for the core: every board message is prefixed with
- * "hm2/<llio-name>: " as LinuxCNC prints it; the sink decides where it goes. */
+ * "hm2/<llio-name>: " as LinuxCNC prints it; the sink decides where it goes.
+ * hm2_log_printf is the same formatting for the board drivers (backends/),
+ * which write their own prefixes and stay silent without a sink. */
 #include <stdio.h>
 
 #include "hm2/hm2.h"
@@ -35,4 +37,16 @@ void hm2_msg_core(hm2_log_fn log, void *ctx, int level, const char *fmt, ...)
     va_start(ap, fmt);
     emit(log, ctx, level, "hm2: ", fmt, ap);
     va_end(ap);
+}
+
+void hm2_log_printf(hm2_log_fn log, void *ctx, int level, const char *fmt, ...)
+{
+    if (!log)
+        return;
+    char line[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof(line), fmt, ap);
+    va_end(ap);
+    log(ctx, level, line);
 }

@@ -7,7 +7,6 @@
 #include <ctype.h>
 #include <errno.h>
 #include <poll.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
@@ -22,18 +21,8 @@
 #define LOAD_TIME_READ_TIMEOUT_NS 1000000000L /* a servo read outside a thread */
 #define DEFAULT_PERIOD_NS 1000000L
 
-static void logf_(struct hm2_eth_board *b, int level, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void logf_(struct hm2_eth_board *b, int level, const char *fmt, ...)
-{
-    char line[300];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof(line), fmt, ap);
-    va_end(ap);
-    if (b->log)
-        b->log(b->log_ctx, level, line);
-}
+/* Messages go to the board's log sink (hm2_log_printf, hostmot2/msg.c). */
+#define logf_(board, ...) hm2_log_printf((board)->log, (board)->log_ctx, __VA_ARGS__)
 
 static int64_t mono_ns(void)
 {

@@ -5,7 +5,6 @@
 
 #include <endian.h>
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include <strings.h>
@@ -80,17 +79,8 @@ int hm2_pci_type_index(const struct hm2_pci_id *const *list, int n, const struct
     return k;
 }
 
-__attribute__((format(printf, 3, 4))) static void blog(struct hm2_pci_board *b, int level,
-                                                       const char *fmt, ...)
-{
-    char line[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof(line), fmt, ap);
-    va_end(ap);
-    if (b->log)
-        b->log(b->log_ctx, level, line);
-}
+/* Messages go to the board's log sink (hm2_log_printf, hostmot2/msg.c). */
+#define blog(board, ...) hm2_log_printf((board)->log, (board)->log_ctx, __VA_ARGS__)
 
 /* ---- the hm2 window: aligned 32-bit accesses only (spec §17.1) ---- */
 

@@ -4,7 +4,6 @@
 #include "hm2_sim_llio.h"
 
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,18 +15,8 @@ static struct hm2_sim_board *board_of(hm2_llio_t *llio)
     return (struct hm2_sim_board *)llio->priv;
 }
 
-static void logf_(struct hm2_sim_board *sb, int level, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void logf_(struct hm2_sim_board *sb, int level, const char *fmt, ...)
-{
-    char line[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof(line), fmt, ap);
-    va_end(ap);
-    if (sb->log)
-        sb->log(sb->log_ctx, level, line);
-}
+/* Messages go to the board's log sink (hm2_log_printf, hostmot2/msg.c). */
+#define logf_(board, ...) hm2_log_printf((board)->log, (board)->log_ctx, __VA_ARGS__)
 
 static int64_t host_time(struct hm2_sim_board *sb)
 {

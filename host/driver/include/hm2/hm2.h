@@ -233,6 +233,10 @@ void hm2_msg(const hostmot2_t *hm2, int level, const char *fmt, ...)
 /* Message without the board prefix ("hm2: ..."). */
 void hm2_msg_core(hm2_log_fn log, void *ctx, int level, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
+/* A formatted line to log (no prefix added); nothing when log is NULL.
+ * The board drivers' (llio providers') messages go through this. */
+void hm2_log_printf(hm2_log_fn log, void *ctx, int level, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
 
 /* ---- probe layer (no HAL) ---- */
 /* Parse config, load firmware if asked, read and validate everything,
