@@ -98,6 +98,9 @@ KINEMATICS = {
 }  # fmt: skip
 IOCONTROL_PROGRAMS = {"io", "iov2", "iocontrol", "iocontrolv2", "hal_manualtoolchange"}
 HALUI_PROGRAMS = {"halui"}
+# Programs that drive a USB pendant this project has no virtual device for
+# (LinuxCNC's xhc-hb04 waits for its USB device before it becomes ready).
+PENDANT_PROGRAMS = {"xhc-hb04"}
 GUI_PROGRAMS = {
     "pyvcp", "gladevcp", "axis", "touchy", "gmoccapy", "qtvcp", "gscreen", "halscope",
     "halmeter", "halshow", "vismach", "panelui",
@@ -158,7 +161,7 @@ class Action:
     """What happens to one logical line: kind is keep, remove or rewrite."""
 
     kind: str
-    part: str = ""  # motion, kinematics, iocontrol, halui, GUI, board
+    part: str = ""  # motion, kinematics, iocontrol, halui, GUI, pendant, board
     why: str = ""
     text: str = ""  # the new line for rewrite
 
@@ -310,6 +313,8 @@ def classify(line: str, ini: Ini, ctx: Context) -> Action:
             part = "iocontrol"
         elif prog in HALUI_PROGRAMS:
             part = "halui"
+        elif prog in PENDANT_PROGRAMS:
+            part = "pendant"
         elif prog in GUI_PROGRAMS or prog.endswith("gui"):
             part = "GUI"
         if part:

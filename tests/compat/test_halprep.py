@@ -75,6 +75,7 @@ def test_ini() -> None:
         ("loadusr -W xyzab-tdr-gui", "GUI"),
         ("net tc iocontrol.0.tool-change => hal_manualtoolchange.change", "iocontrol"),
         ("setp gantrykins.joint-0 0", "kinematics"),
+        ("loadusr -W xhc-hb04 -x -I xhc.ini -H", "pendant"),
     ],
 )
 def test_removed(line: str, part: str) -> None:
@@ -241,3 +242,14 @@ def test_kinematics_line_with_missing_ini_value() -> None:
     a = act("loadrt [NOPE]KINEMATICS")
     assert (a.kind, a.part) == ("remove", "kinematics")
     assert act("loadrt [NOPE]OTHER").kind == "keep"
+
+
+def test_pendant_objects_removed() -> None:
+    """After LinuxCNC's xhc-hb04 pendant program is removed, the lines that
+    name its pins go too; other lines stay."""
+    ctx = hp.Context()
+    assert act("loadusr -W xhc-hb04 -x -I xhc.ini -H", ctx).part == "pendant"
+    assert act("setp xhc-hb04.inch-icon 1", ctx).part == "pendant"
+    a = act("net pendant:jog-x xhc-hb04.jog.scale => halui.axis.jog-speed", ctx)
+    assert (a.kind, a.part) == ("remove", "halui/pendant")
+    assert act("setp pid.0.Pgain 1", ctx).kind == "keep"
