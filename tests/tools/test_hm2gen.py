@@ -36,7 +36,7 @@ FIRMWARES = [
     ("5i20", "SV12", "PIN_SV12_72", set()),
     ("7i43", "SVST4_4", "PIN_SVST4_4_48", set()),
     ("7i43", "SV8", "PIN_SV8_48", set()),
-    ("5i25", "7I76x2", "PIN_7I76x2_34", {193}),
+    ("5i25", "7I76x2", "PIN_7I76x2_34", set()),
 ]
 
 # Spec section 16 board table (typed here independently of the board files).

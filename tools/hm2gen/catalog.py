@@ -123,10 +123,9 @@ MODULES: dict[str, ModuleType] = {
             0x10,
             0x3C,
             signals=_ssr_signals(),
-            # hm2_sserial.v speaks a remote protocol of its own, not Mesa's
-            # SSLBP yet: no firmware publishes it until a stock driver can
-            # talk to it (docs/hm2gen.md).
-            implemented=False,
+            # hm2_sserial.v: Mesa's host registers and IDROM entry, but a
+            # remote wire protocol of our own, not Mesa's SSLBP
+            # (docs/hm2-firmware.md).
             max_instances=4,
             pin_name="SSerial",
         ),
