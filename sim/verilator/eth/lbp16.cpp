@@ -136,6 +136,14 @@ void Lbp16::fail(Fail f, const std::string &why)
 
 bool Lbp16::handle(const uint8_t *pkt, size_t n, std::vector<uint8_t> &reply)
 {
+    bool send = run_datagram(pkt, n, reply);
+    if (!send)
+        reply.clear(); // never a partial reply of a refused datagram
+    return send;
+}
+
+bool Lbp16::run_datagram(const uint8_t *pkt, size_t n, std::vector<uint8_t> &reply)
+{
     reply.clear();
     last_error_.clear();
     bump(kStRxPackets);

@@ -97,7 +97,8 @@ class Lbp16 {
   public:
     Lbp16(Lbp16Target &t, const Lbp16Identity &id);
 
-    // Run one datagram.  true: `reply` (cleared first) must be sent back.
+    // Run one datagram.  true: `reply` (cleared first) must be sent back;
+    // false: `reply` is empty.
     bool handle(const uint8_t *pkt, size_t n, std::vector<uint8_t> &reply);
     // Counters the transport updates (replies sent, send failures).
     void count_tx(bool ok);
@@ -113,6 +114,7 @@ class Lbp16 {
     };
     enum class Fail { kNone, kParse, kMemory, kWrite };
 
+    bool run_datagram(const uint8_t *pkt, size_t n, std::vector<uint8_t> &reply);
     Fail run(const Cmd &c, uint32_t addr, const uint8_t *data, std::vector<uint8_t> &reply);
     Fail small_read(const Cmd &c, uint32_t addr, std::vector<uint8_t> &reply);
     Fail small_write(const Cmd &c, uint32_t addr, const uint8_t *data);

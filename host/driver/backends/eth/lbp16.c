@@ -73,12 +73,17 @@ int lbp16_add_read_tail(struct lbp16_pkt *p, uint32_t read_seq)
 {
     uint8_t seq[4] = {(uint8_t)read_seq, (uint8_t)(read_seq >> 8), (uint8_t)(read_seq >> 16),
                       (uint8_t)(read_seq >> 24)};
+    size_t len = p->len, reply_len = p->reply_len;
     int r;
     if ((r = lbp16_add_read(p, LBP16_SPACE_STATUS, 2, LBP16_STATUS_RX_PACKETS, 1, 0)) ||
         (r = lbp16_add_write(p, LBP16_SPACE_TIMERS, 2, LBP16_SCRATCH_READ_SEQ, 2, 1, seq)) ||
         (r = lbp16_add_read(p, LBP16_SPACE_TIMERS, 2, LBP16_SCRATCH_READ_SEQ, 4, 1)))
-        return r;
+        goto undo;
     return 0;
+undo: /* all of the tail or none of it */
+    p->len = len;
+    p->reply_len = reply_len;
+    return r;
 }
 
 int lbp16_add_write_tail(struct lbp16_pkt *p, uint32_t write_seq)
@@ -108,11 +113,16 @@ int lbp16_check_read_reply(const uint8_t *r, size_t n, size_t reply_len, uint32_
 int lbp16_add_sync_tag(struct lbp16_pkt *p, uint32_t tag)
 {
     uint8_t t[4] = {(uint8_t)tag, (uint8_t)(tag >> 8), (uint8_t)(tag >> 16), (uint8_t)(tag >> 24)};
+    size_t len = p->len, reply_len = p->reply_len;
     int r;
     if ((r = lbp16_add_write(p, LBP16_SPACE_TIMERS, 2, LBP16_SCRATCH_SYNC_TAG, 2, 1, t)) ||
         (r = lbp16_add_read(p, LBP16_SPACE_TIMERS, 2, LBP16_SCRATCH_SYNC_TAG, 2, 1)))
-        return r;
+        goto undo;
     return 0;
+undo: /* all of the tag or none of it */
+    p->len = len;
+    p->reply_len = reply_len;
+    return r;
 }
 
 int lbp16_check_sync_reply(const uint8_t *r, size_t n, size_t reply_len, uint32_t tag)

@@ -65,6 +65,7 @@ int lbp16_add_write(struct lbp16_pkt *p, unsigned space, unsigned size, uint16_t
  * packet: the board's RX packet count (2 bytes), the read sequence number
  * written to scratch and both sequence numbers read back (8 bytes). */
 #define LBP16_READ_TAIL_REPLY 10
+/* The tails are appended whole or not at all (-ENOSPC, packet unchanged). */
 int lbp16_add_read_tail(struct lbp16_pkt *p, uint32_t read_seq);
 /* Appended to a write packet: the write sequence number to scratch. */
 int lbp16_add_write_tail(struct lbp16_pkt *p, uint32_t write_seq);
