@@ -10,6 +10,11 @@
  *
  * board[i] is optional (the virtual board says what it is); when given it
  * must match.  config[i] is the hostmot2 config string of board i.
+ *
+ * With inproc=1 the boards run inside this process instead
+ * (lib/libvboard_inproc.so, loaded here): board[i] names board i,
+ * firmware[i] its built-in firmware (or config's firmware= programs it),
+ * loops[i] its pin loops; a servo period's reads and writes are calls.
  */
 #include <errno.h>
 #include <stdlib.h>
@@ -19,6 +24,7 @@
 #include "hal.h"
 #include "hm2/hostmot2.h"
 #include "hm2_board_module.h"
+#include "hm2_sim_inproc.h"
 #include "hm2_sim_llio.h"
 #include "rtapi.h"
 
@@ -38,7 +44,7 @@ RTAPI_EXPORT __attribute__((used)) const char *rtapi_info_description_socket =
     "socket path of each virtual board (bin/vboard --socket)";
 RTAPI_EXPORT __attribute__((used)) int rtapi_info_size_socket = NB;
 static char *board[NB];
-RTAPI_MP_ARRAY_STRING(board, NB, "expected board of each socket (5i20, ...; optional)");
+RTAPI_MP_ARRAY_STRING(board, NB, "board of each socket (5i20, ...; optional: checked when given), or of each in-process board (inproc=1)");
 static char *config[NB];
 RTAPI_MP_ARRAY_STRING(config, NB, "config string for the boards (see hostmot2(9) manpage)");
 static int host_time = 1;
@@ -49,12 +55,23 @@ RTAPI_MP_INT(async_writes, "1: send each period's writes without waiting for the
                            "(checked with the next request; one round trip per period)");
 static int spin_us = 0;
 RTAPI_MP_INT(spin_us, "busy-wait up to this many us for each board reply before sleeping");
+static int inproc = 0;
+RTAPI_MP_INT(inproc, "1: run the boards inside this process (lib/libvboard_inproc.so) instead of "
+                     "talking to bin/vboard sockets");
+static char *firmware[NB];
+RTAPI_MP_ARRAY_STRING(firmware, NB, "inproc=1: built-in firmware of each board (SVST8_4, ...)");
+static char *loops[NB];
+RTAPI_MP_ARRAY_STRING(loops, NB, "inproc=1: pin loops of each board, FROM:TO[:inv] words");
 
 struct hs_slot {
     struct hm2_sim_board board;
+    struct hm2_sim_inproc ib;
     int set_up;
     int registered;
 };
+
+/* inproc=1: the board library, loaded once for all boards */
+static struct hm2_sim_inproc_lib lib;
 
 /* The module's boards (rtapi_app_exit finds them again here). */
 static struct hm2_board_module mod = {NULL, -1};
@@ -69,19 +86,33 @@ static int64_t hs_no_time(void)
     return 0;
 }
 
+static hm2_llio_t *llio_of(struct hs_slot *s)
+{
+    return inproc ? &s->ib.llio : &s->board.llio;
+}
+
+static const char *where(int i)
+{
+    return inproc ? "in this process" : sockets[i];
+}
+
 static void release_one(void *slots, int i)
 {
     struct hs_slot *s = &((struct hs_slot *)slots)[i];
     if (s->registered) {
-        rtapi_print("%s: dropping virtual board at %s\n", s->board.llio.name, sockets[i]);
-        hm2_unregister(&s->board.llio);
+        rtapi_print("%s: dropping virtual board %s%s\n", llio_of(s)->name, inproc ? "" : "at ", where(i));
+        hm2_unregister(llio_of(s));
     }
-    if (s->set_up)
+    if (s->set_up && inproc)
+        hm2_sim_inproc_teardown(&s->ib);
+    else if (s->set_up)
         hm2_sim_teardown(&s->board);
 }
 
 static int board_wanted(int i)
 {
+    if (inproc)
+        return board[i] && board[i][0];
     return sockets[i] && sockets[i][0];
 }
 
@@ -89,15 +120,69 @@ static int board_wanted(int i)
 static int type_index(const struct hs_slot *slots, int i, const char *name)
 {
     int n = 0;
-    for (int j = 0; j < i; j++)
-        if (slots[j].set_up && strcasecmp(slots[j].board.hello.board, name) == 0)
+    for (int j = 0; j < i; j++) {
+        const char *b = inproc ? slots[j].ib.hello.board : slots[j].board.hello.board;
+        if (slots[j].set_up && strcasecmp(b, name) == 0)
             n++;
+    }
     return n;
+}
+
+static int register_one(struct hs_slot *s, int i, int comp_id, const char *fw)
+{
+    hm2_llio_t *l = llio_of(s);
+    l->comp_id = comp_id;
+    int r = hm2_register(l, config[i]);
+    if (r) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "%s: virtual board %s%s fails HM2 registration\n",
+                        l->name, inproc ? "" : "at ", where(i));
+        return r;
+    }
+    s->registered = 1;
+    rtapi_print("%s: initialized virtual AnyIO board %s%s (%s)\n", l->name,
+                inproc ? "" : "at ", where(i),
+                fw[0] ? fw : "blank");
+    return 0;
+}
+
+static int setup_inproc(struct hs_slot *s, int i, int comp_id)
+{
+    if (sockets[i] && sockets[i][0]) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: inproc=1 runs the boards in this process: "
+                                       "socket=%s makes no sense with it\n", sockets[i]);
+        return -EINVAL;
+    }
+    if (host_time && !rtapi_is_simclock()) {
+        rtapi_print_msg(RTAPI_MSG_ERR,
+                        "hm2_sim: in-process board %d runs in lockstep with HAL's clock but "
+                        "this HAL session runs on the wall clock, so the board would fall "
+                        "behind real time; run the session on the simulated clock (halrun -S) "
+                        "or load with host_time=0 (the board's clocks stand still)\n", i);
+        return -EINVAL;
+    }
+    int r = hm2_sim_inproc_setup(&s->ib, &lib, board[i], firmware[i], 0,
+                                 host_time ? hs_now : hs_no_time, hm2_board_rtapi_log, NULL);
+    if (r)
+        return r;
+    s->set_up = 1;
+    if ((r = hm2_sim_inproc_loops(&s->ib, loops[i])))
+        return r;
+    int index = type_index((const struct hs_slot *)s - i, i, s->ib.hello.board);
+    hm2_board_fill_llio(s->ib.info, index, &s->ib.llio);
+    return register_one(s, i, comp_id, s->ib.hello.firmware);
 }
 
 static int setup_one(void *slots, int i, int comp_id)
 {
     struct hs_slot *s = &((struct hs_slot *)slots)[i];
+    if (inproc)
+        return setup_inproc(s, i, comp_id);
+    if ((firmware[i] && firmware[i][0]) || (loops[i] && loops[i][0])) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: firmware= and loops= are for in-process "
+                                       "boards (inproc=1); a socket board takes them on the "
+                                       "vboard command line\n");
+        return -EINVAL;
+    }
     /* the index depends on the board type, which only HELLO tells: set up
      * with index 0, then rename */
     int r = hm2_sim_setup(&s->board, sockets[i], board[i], 0, host_time ? hs_now : hs_no_time,
@@ -113,22 +198,12 @@ static int setup_one(void *slots, int i, int comp_id)
     s->board.async_writes = async_writes != 0;
     int index = type_index(slots, i, s->board.hello.board);
     hm2_board_fill_llio(s->board.info, index, &s->board.llio);
-    s->board.llio.comp_id = comp_id;
-    r = hm2_register(&s->board.llio, config[i]);
-    if (r) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "%s: virtual board at %s fails HM2 registration\n",
-                        s->board.llio.name, sockets[i]);
-        return r;
-    }
-    s->registered = 1;
-    rtapi_print("%s: initialized virtual AnyIO board at %s (%s)\n", s->board.llio.name, sockets[i],
-                s->board.hello.firmware[0] ? s->board.hello.firmware : "blank");
-    return 0;
+    return register_one(s, i, comp_id, s->board.hello.firmware);
 }
 
 static const struct hm2_board_module_desc desc = {
     .name = "hm2_sim",
-    .none_given = "no board given (socket=PATH[,PATH...])",
+    .none_given = "no board given (socket=PATH[,PATH...], or inproc=1 board=NAME[,NAME...])",
     .max_boards = NB, .slot_size = sizeof(struct hs_slot),
     .wanted = board_wanted, .setup = setup_one, .release = release_one,
 };
@@ -140,10 +215,23 @@ int rtapi_app_main(void)
         rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: spin_us=%d out of range (0..10000)\n", spin_us);
         return -EINVAL;
     }
-    return hm2_board_module_load(&mod, &desc);
+    if (inproc != 0 && inproc != 1) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: inproc=%d: want 0 or 1\n", inproc);
+        return -EINVAL;
+    }
+    if (inproc) {
+        int r = hm2_sim_inproc_lib_open(&lib, NULL, hm2_board_rtapi_log, NULL);
+        if (r)
+            return r;
+    }
+    int r = hm2_board_module_load(&mod, &desc);
+    if (r)
+        hm2_sim_inproc_lib_close(&lib);
+    return r;
 }
 
 void rtapi_app_exit(void)
 {
     hm2_board_module_unload(&mod, &desc);
+    hm2_sim_inproc_lib_close(&lib);
 }
