@@ -153,10 +153,13 @@ def test_pin_file(img5i20: Path) -> None:
     assert r.returncode == 0, r.stderr
     assert "IO Connections for P4" in r.stdout
     assert "Low Level init" not in r.stdout
-    rows = [line.split() for line in r.stdout.splitlines() if re.match(r"^\d\d +\d+ +IOPort", line)]
+    # mesaflash --readhmid's layout and names (hm2flash --readhmid prints the same)
+    rows = [
+        line.split() for line in r.stdout.splitlines() if re.match(r"^P\d-\d\d +\d+ +IOPort", line)
+    ]
     assert len(rows) == 72
-    assert rows[60][:6] == ["25", "60", "IOPort", "StepGen", "2", "Step"]
-    assert rows[7][:5] == ["15", "7", "IOPort", "PWMGen", "0"]
+    assert rows[60][:6] == ["P4-25", "60", "IOPort", "StepGen", "2", "Step/Table1"]
+    assert rows[7][:5] == ["P2-15", "7", "IOPort", "PWM", "0"]
 
 
 def test_bad_input(tmp_path: Path, img5i20: Path) -> None:

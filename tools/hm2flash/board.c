@@ -10,6 +10,9 @@
  *                the times printed are board times.
  *   pci:[ADDR]   a Mesa PCI board (5i25, 6i25) through sysfs (source_pci.c):
  *                real time, waits sleep.
+ *   IP           an Ethernet board (7i92, 7i96S) at that IPv4 address (also
+ *                eth:IP; default 192.168.1.121): hm2 and the flash over
+ *                LBP16 (source_eth.c), real time.
  */
 #define _GNU_SOURCE
 #include <ctype.h>
@@ -23,6 +26,7 @@
 
 #include "hm2_sim_llio.h"
 #include "hm2flash.h"
+#include "source_eth.h"
 #include "source_pci.h"
 
 #define SIM_ACCESS_NS 1000u
@@ -60,7 +64,7 @@ static void real_delay(void *ctx, uint64_t ns)
 
 uint64_t hm2flash_now_ns(struct hm2flash_board *bd)
 {
-    return bd->is_pci ? mono_ns() : (uint64_t)sim_clock_ns;
+    return bd->is_pci || bd->is_eth ? mono_ns() : (uint64_t)sim_clock_ns;
 }
 
 static void sim_log(void *ctx, int level, const char *line)
@@ -101,6 +105,35 @@ static int open_sim(struct hm2flash_board *bd, const char *path)
     return 0;
 }
 
+static int open_eth(struct hm2flash_board *bd, const char *addr)
+{
+    const char *ip = !addr ? "192.168.1.121" : strncmp(addr, "eth:", 4) == 0 ? addr + 4 : addr;
+    if (strncmp(ip, "sim:", 4) == 0 || strncmp(ip, "pci:", 4) == 0) {
+        snprintf(bd->why, sizeof(bd->why),
+                 "--addr %s: the %s is an Ethernet board: give its IP address (e.g. --addr "
+                 "192.168.1.121; a virtual one: vboard --udp IP)", addr, bd->display_name);
+        return -ENODEV;
+    }
+    bd->is_eth = 1;
+    bd->io.delay_ns = real_delay;
+    snprintf(bd->source, sizeof(bd->source), "%s", ip);
+    int r = hm2flash_open_eth(ip, &bd->io, &bd->handle, bd->why, sizeof(bd->why));
+    if (r)
+        return r;
+    const char *got = hm2flash_eth_board(bd->handle);
+    if (strcasecmp(got, bd->board->name) != 0) {
+        snprintf(bd->why, sizeof(bd->why), "No %s board found (the board at %s is a %s)",
+                 bd->display_name, ip, got);
+        hm2flash_close_eth(bd->handle);
+        bd->handle = NULL;
+        return -ENODEV;
+    }
+    snprintf(bd->description, sizeof(bd->description), "ETH device %s at ip=%s",
+             bd->display_name, ip);
+    snprintf(bd->firmware, sizeof(bd->firmware), "(see --readhmid)");
+    return 0;
+}
+
 int hm2flash_open(struct hm2flash_board *bd, const char *device, const char *addr)
 {
     memset(bd, 0, sizeof(*bd));
@@ -124,6 +157,14 @@ int hm2flash_open(struct hm2flash_board *bd, const char *device, const char *add
     bd->io.delay_ctx = bd;
     bd->io.progress = progress_cb;
     bd->io.progress_ctx = bd;
+    /* Mesa's layouts: Spartan-6 boot block + fallback + user image; the
+     * Efinix T20 (7i96S): fallback at 0, user image at 2 MiB */
+    int efinix = strcmp(bd->board->fpga_part, "T20F256") == 0;
+    bd->user_addr = efinix ? 0x200000u : HM2_FLASH_USER_ADDR;
+    bd->fallback_addr = efinix ? 0u : HM2_FLASH_FALLBACK_ADDR;
+    bd->boot_block = !efinix;
+    if (bd->board->ethernet)
+        return open_eth(bd, addr);
     if (!addr || strncmp(addr, "pci:", 4) == 0) {
         bd->is_pci = 1;
         bd->io.delay_ns = real_delay;
@@ -149,6 +190,11 @@ int hm2flash_open(struct hm2flash_board *bd, const char *device, const char *add
 
 void hm2flash_close(struct hm2flash_board *bd)
 {
+    if (bd->is_eth) {
+        hm2flash_close_eth(bd->handle);
+        bd->handle = NULL;
+        return;
+    }
     if (bd->is_pci) {
         hm2flash_close_pci(bd->handle);
         bd->handle = NULL;
@@ -162,8 +208,40 @@ void hm2flash_close(struct hm2flash_board *bd)
     bd->handle = NULL;
 }
 
+/* After a reload the Ethernet board answers again once its FPGA is up:
+ * connect again (up to 5 s) and read the hm2 cookie. */
+static int reopen_eth(struct hm2flash_board *bd)
+{
+    struct hm2_flash_io keep = bd->io;
+    hm2flash_close(bd);
+    int r = -ETIMEDOUT;
+    for (int i = 0; i < 50 && r; i++) {
+        real_delay(bd, 100000000ull);
+        bd->why[0] = 0;
+        r = hm2flash_open_eth(bd->source, &bd->io, &bd->handle, bd->why, sizeof(bd->why));
+    }
+    if (r)
+        return r;
+    uint32_t cookie = 0;
+    r = bd->io.llio->read(bd->io.llio, 0x100, &cookie, sizeof(cookie));
+    if (!r && cookie != 0x55AACAFEu)
+        r = -ENODEV;
+    if (r) {
+        snprintf(bd->why, sizeof(bd->why), "no hm2 firmware answers at %s (cookie 0x%08X)",
+                 bd->source, cookie);
+        return r;
+    }
+    snprintf(bd->firmware, sizeof(bd->firmware), "HostMot2 (cookie 0x%08X)", cookie);
+    keep.llio = bd->io.llio;
+    keep.ops_ctx = bd->io.ops_ctx;
+    bd->io = keep;
+    return 0;
+}
+
 int hm2flash_reopen(struct hm2flash_board *bd)
 {
+    if (bd->is_eth)
+        return reopen_eth(bd);
     if (bd->is_pci) {
         /* the window stays mapped; the FPGA takes a moment to reconfigure */
         bd->io.delay_ns(bd, 200000000ull);

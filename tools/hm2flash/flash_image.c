@@ -76,6 +76,8 @@ int flash_image_check(const struct hm2_bitfile *bf, const char *board, const cha
         }
         return 0;
     }
+    if (fpga_part && strncasecmp(fpga_part, "T20", 3) == 0)
+        return 0; /* an Efinix bitstream: no Xilinx sync word to look for */
     if (!has_sync_word(p, bf->size)) {
         snprintf(err, errlen, "the configuration data has no sync word (0xAA995566): not an FPGA "
                               "bitstream");

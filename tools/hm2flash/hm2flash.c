@@ -16,6 +16,8 @@
 #include "hm2/bitfile.h"
 #include "hm2/boards.h"
 #include "hm2/cfgflash.h"
+#include "hm2/hm2.h"
+#include "hm2/hmid.h"
 #include "hm2flash.h"
 #include "jtag_cmd.h"
 #include "program.h"
@@ -30,7 +32,8 @@ enum cmd {
     CMD_RELOAD,
     CMD_INFO_FILE,
     CMD_PROGRAM,
-    CMD_SCAN
+    CMD_SCAN,
+    CMD_READHMID
 };
 
 struct opts {
@@ -49,13 +52,15 @@ static void usage(FILE *f)
             "  hm2flash --device NAME --addr SOURCE [options] --verify FILE.bit\n"
             "  hm2flash --device NAME --addr SOURCE [options] --backup-flash FILE\n"
             "  hm2flash --device NAME --addr SOURCE [options] --reload\n"
+            "  hm2flash --device NAME --addr SOURCE --readhmid\n"
             "  hm2flash --device NAME --addr SOURCE --program FILE (.BIT; .rbf for pluto)\n"
             "  hm2flash --jtag CABLE --scan\n"
             "  hm2flash --jtag CABLE --program FILE.bit\n"
             "  hm2flash --info FILE.bit\n"
             "  hm2flash --help\n"
             "SOURCE: pci:[ADDR] (a Mesa PCI board, the default), sim:SOCKET (a virtual\n"
-            "        board, bin/vboard --socket SOCKET); for the\n"
+            "        board, bin/vboard --socket SOCKET); for the Ethernet boards (7i92,\n"
+            "        7i96s) the IP address (default 192.168.1.121); for the\n"
             "        EPP boards (7i43, pluto) any EPP port: ppdev:/dev/parport0, raw:0x378, ...\n"
             "CABLE: ftdi (0403:6010), ftdi:VID:PID or ftdi:VID:PID:SERIAL (FTDI MPSSE),\n"
             "       gpiod:CHIP:TCK/TMS/TDI/TDO (GPIO lines, e.g. gpiod:gpiochip0:11/25/10/9)\n"
@@ -83,7 +88,7 @@ static int parse(int argc, char **argv, struct opts *o)
         {"fix-boot-block", no_argument, 0, 'x'}, {"no-auto-verify", no_argument, 0, 'n'},
         {"verbose", no_argument, 0, 'v'},      {"help", no_argument, 0, 'h'},
         {"program", required_argument, 0, 'p'}, {"jtag", required_argument, 0, 'j'},
-        {"scan", no_argument, 0, 's'},
+        {"scan", no_argument, 0, 's'},         {"readhmid", no_argument, 0, 'R'},
         {0, 0, 0, 0}};
     memset(o, 0, sizeof(*o));
     o->cmd = CMD_INFO_BOARD;
@@ -100,6 +105,7 @@ static int parse(int argc, char **argv, struct opts *o)
         case 'p': set_cmd(o, CMD_PROGRAM, optarg); break;
         case 'j': o->jtag = optarg; break;
         case 's': set_cmd(o, CMD_SCAN, NULL); break;
+        case 'R': set_cmd(o, CMD_READHMID, NULL); break;
         case 'f': o->fallback = 1; break;
         case 'x': o->fix_boot = 1; break;
         case 'n': o->no_verify = 1; break;
@@ -114,7 +120,7 @@ static int parse(int argc, char **argv, struct opts *o)
     }
     if (o->ncmds > 1) {
         fprintf(stderr, "hm2flash: give one command (--write, --verify, --backup-flash, "
-                        "--reload, --program, --info)\n");
+                        "--reload, --readhmid, --program, --info)\n");
         return 2;
     }
     if (o->jtag && o->cmd != CMD_SCAN && o->cmd != CMD_PROGRAM) {
@@ -183,20 +189,21 @@ static int cmd_info_file(const struct opts *o)
 
 /* ---- board commands ---- */
 
-static uint32_t area_addr(const struct opts *o)
+static uint32_t area_addr(const struct hm2flash_board *bd, const struct opts *o)
 {
-    return o->fallback ? HM2_FLASH_FALLBACK_ADDR : HM2_FLASH_USER_ADDR;
+    return o->fallback ? bd->fallback_addr : bd->user_addr;
 }
 
-static uint32_t area_size(const struct opts *o, const struct hm2_flash_io *io)
+static uint32_t area_size(const struct hm2flash_board *bd, const struct opts *o)
 {
-    return o->fallback ? HM2_FLASH_USER_ADDR - HM2_FLASH_FALLBACK_ADDR
-                       : io->size - HM2_FLASH_USER_ADDR;
+    return o->fallback ? bd->user_addr - bd->fallback_addr : bd->io.size - bd->user_addr;
 }
 
 static int check_boot_block(struct hm2flash_board *bd, const struct opts *o)
 {
     int ok = 0;
+    if (!bd->boot_block) /* the FPGA family boots without one */
+        return 0;
     if (hm2_flash_boot_block_ok(&bd->io, &ok))
         return -1;
     if (ok) {
@@ -224,7 +231,7 @@ static int check_boot_block(struct hm2flash_board *bd, const struct opts *o)
 
 static int do_verify(struct hm2flash_board *bd, const struct opts *o, const struct bitfile *b)
 {
-    uint32_t at = area_addr(o), bad = 0;
+    uint32_t at = area_addr(bd, o), bad = 0;
     printf("Verifying FLASH memory sectors starting from 0x%X...\n", at);
     hm2flash_progress_begin(bd);
     int r = hm2_flash_verify(&bd->io, at, b->bf.data, b->bf.size, &bad);
@@ -243,7 +250,7 @@ static int load_checked(struct hm2flash_board *bd, const struct opts *o, struct 
         return -1;
     struct flash_image_info info;
     char err[200];
-    if (flash_image_check(&b->bf, bd->board->name, bd->board->fpga_part, area_size(o, &bd->io),
+    if (flash_image_check(&b->bf, bd->board->name, bd->board->fpga_part, area_size(bd, o),
                           &info, err, sizeof(err))) {
         fprintf(stderr, "hm2flash: Error: %s: %s; nothing written\n", o->file, err);
         free(b->buf);
@@ -264,10 +271,10 @@ static int cmd_write(struct hm2flash_board *bd, const struct opts *o)
         goto out;
     if (o->fallback && check_boot_block(bd, &(struct opts){.fix_boot = 1}))
         goto out;
-    uint32_t at = area_addr(o);
+    uint32_t at = area_addr(bd, o);
     printf("FLASH memory sectors to write: %u, max sectors in area: %u\n",
            (b.bf.size + HM2_FLASH_SECTOR - 1) / HM2_FLASH_SECTOR,
-           area_size(o, &bd->io) / HM2_FLASH_SECTOR);
+           area_size(bd, o) / HM2_FLASH_SECTOR);
     bd->area_addr = at;
     printf("Erasing FLASH memory sectors starting from 0x%X...\n", at);
     hm2flash_progress_begin(bd);
@@ -359,15 +366,50 @@ static int cmd_reload(struct hm2flash_board *bd, const struct opts *o)
     return 0;
 }
 
+static void quiet_log(void *ctx, int level, const char *line)
+{
+    (void)ctx;
+    if (level == HM2_ERR)
+        fprintf(stderr, "hm2flash: %s\n", line);
+}
+
+/* The firmware's IDROM, modules and pin-out, as mesaflash --readhmid
+ * prints them (the listing is hm2pinout --pin-file's, hm2/hmid.h). */
+static int cmd_readhmid(struct hm2flash_board *bd)
+{
+    hm2_llio_t *llio = bd->io.llio;
+    int (*reset)(hm2_llio_t *) = llio->reset;
+    int (*program)(hm2_llio_t *, const struct hm2_bitfile *) = llio->program_fpga;
+    llio->reset = NULL; /* read only: never reset or load anything */
+    llio->program_fpga = NULL;
+    struct hm2_options ho = {{0, 0, 0, 0}, NULL};
+    int err = 0;
+    hostmot2_t *hm2 = hm2_probe(llio, NULL, &ho, quiet_log, NULL, &err);
+    llio->reset = reset;
+    llio->program_fpga = program;
+    if (!hm2) {
+        fprintf(stderr, "hm2flash: %s: no usable HostMot2 firmware on %s (%s)\n",
+                bd->description, llio->name, strerror(-err));
+        return 1;
+    }
+    hm2_print_hmid(hm2, stdout);
+    hm2_free(hm2);
+    return 0;
+}
+
 static int cmd_board_info(struct hm2flash_board *bd)
 {
     uint8_t id[3] = {0, 0, 0};
-    hm2_flash_jedec(&bd->io, id);
+    int jedec = hm2_flash_jedec(&bd->io, id) == 0;
     printf("%s\n", bd->description);
     printf("  Board: %s\n", bd->display_name);
     printf("  FPGA type: %s\n", bd->board->fpga_part);
-    printf("  Flash size: %s (id: 0x%02X, JEDEC %02X %02X %02X)\n",
-           hm2_flash_size_text(bd->io.signature), bd->io.signature, id[0], id[1], id[2]);
+    if (jedec)
+        printf("  Flash size: %s (id: 0x%02X, JEDEC %02X %02X %02X)\n",
+               hm2_flash_size_text(bd->io.signature), bd->io.signature, id[0], id[1], id[2]);
+    else
+        printf("  Flash size: %s (id: 0x%02X)\n", hm2_flash_size_text(bd->io.signature),
+               bd->io.signature);
     printf("  Firmware: %s\n", bd->firmware);
     print_bootsts(bd);
     return 0;
@@ -407,6 +449,7 @@ int main(int argc, char **argv)
     case CMD_VERIFY: rc = cmd_verify(&bd, &o); break;
     case CMD_BACKUP: rc = cmd_backup(&bd, &o); break;
     case CMD_RELOAD: rc = cmd_reload(&bd, &o); break;
+    case CMD_READHMID: rc = cmd_readhmid(&bd); break;
     default: rc = cmd_board_info(&bd); break;
     }
     hm2flash_close(&bd);

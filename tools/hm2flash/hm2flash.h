@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
  * hm2flash.h - the board hm2flash works on: an llio reached through a
- * source (sim:SOCKET, pci:[ADDR]), the flash access on it, a clock (the board's
+ * source (sim:SOCKET, pci:[ADDR], an Ethernet board's IP address), the flash access on it, a clock (the board's
  * simulated one for a virtual board) and the progress display.
  */
 #ifndef HM2FLASH_H
@@ -21,6 +21,10 @@ struct hm2flash_board {
     struct hm2_flash_io io;
     void *handle;           /* the source's state */
     int is_pci;             /* pci: source (real time), else sim: (board time) */
+    int is_eth;             /* an Ethernet board (LBP16; real time) */
+    /* the flash layout of the board's FPGA family */
+    uint32_t user_addr, fallback_addr;
+    int boot_block;         /* Spartan-6: the boot block at 0 selects the images */
     /* progress display */
     int tty;
     const char *phase;

@@ -15,6 +15,7 @@
 
 #include "hm2/boards.h"
 #include "hm2/hm2.h"
+#include "hm2/hmid.h"
 #include "hm2/llio_image.h"
 #include "source_pci.h"
 #include "source_sim.h"
@@ -86,64 +87,6 @@ static int open_image(const char *arg, const struct hm2_board_info *b, int index
     if (r)
         fprintf(stderr, "hm2pinout: %s\n", err);
     return r;
-}
-
-/* A .PIN-style listing of everything the firmware has (not limited by the
- * config string). */
-static void print_pin_file(hostmot2_t *hm2)
-{
-    const struct hm2_idrom *id = &hm2->idrom;
-    printf("Configuration Name: HOSTMOT2\n\n");
-    printf("General configuration information:\n\n");
-    printf("  BaseClock Frequency: %u Hz\n", id->clock_low);
-    printf("  ClockHigh Frequency: %u Hz\n", id->clock_high);
-    printf("  IO Width: %u\n", id->io_width);
-    printf("  IO Ports: %u\n", id->io_ports);
-    printf("  PortWidth: %u\n\n", id->port_width);
-    printf("Modules in configuration:\n\n");
-    for (int i = 0; i < hm2->num_mds; i++) {
-        const struct hm2_md *md = &hm2->md[i];
-        char unk[32];
-        const char *n = hm2_gtag_name(md->gtag, unk, sizeof(unk));
-        printf("  Module: %s\n", n);
-        printf("  There are %d of %s in configuration\n", md->instances, n);
-        printf("  Version: %d\n", md->version);
-        printf("  Registers: %d\n", md->num_registers);
-        printf("  BaseAddress: %04X\n", md->base_address);
-        printf("  ClockFrequency: %.3f MHz\n", md->clock_freq / 1e6);
-        printf("  Register Stride: %u bytes\n", md->register_stride);
-        printf("  Instance Stride: %u bytes\n\n", md->instance_stride);
-    }
-    printf("Configuration pin-out:\n");
-    int width = (int)id->port_width;
-    for (int port = 0; port < (int)id->io_ports; port++) {
-        const char *conn = hm2->llio->ioport_connector_name[port];
-        printf("\nIO Connections for %s\n", conn ? conn : "??");
-        printf("Pin#    I/O     Pri. func    Sec. func       Chan      Pin func        Pin Dir\n\n");
-        for (int b = 0; b < width; b++) {
-            int i = port * width + b;
-            const struct hm2_pin *p = &hm2->pin[i];
-            char cbuf[64], fbuf[32], nbuf[32];
-            const char *cname = hm2_llio_pin_name(hm2->llio, i, cbuf, sizeof(cbuf));
-            const char *pin = cname ? strrchr(cname, '-') : NULL;
-            const char *pn = pin ? pin + 1 : (cname ? cname : "?");
-            if (p->sec_tag == 0) {
-                printf("%-8s%-8d%-13s%-16s\n", pn, i, "IOPort", "None");
-                continue;
-            }
-            struct hm2_pin copy = *p;
-            copy.unused = false;
-            char chan[8];
-            if (p->sec_unit & 0x80)
-                snprintf(chan, sizeof(chan), "Global");
-            else
-                snprintf(chan, sizeof(chan), "%d", p->sec_unit);
-            printf("%-8s%-8d%-13s%-16s%-10s%-16s%s\n", pn, i, "IOPort",
-                   hm2_gtag_name(p->sec_tag, fbuf, sizeof(fbuf)), chan,
-                   hm2_get_pin_secondary_name(&copy, nbuf, sizeof(nbuf)),
-                   (p->sec_pin & 0x80) ? "(Out)" : "(In)");
-        }
-    }
 }
 
 int main(int argc, char **argv)
@@ -238,7 +181,7 @@ probe:;
         goto out;
     }
     if (o.pin_file) {
-        print_pin_file(hm2);
+        hm2_print_hmid(hm2, stdout);
     } else {
         hm2_print_modules(hm2);
         hm2_print_pin_usage(hm2);

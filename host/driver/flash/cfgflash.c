@@ -144,7 +144,7 @@ const char *hm2_flash_size_text(uint8_t sig)
 int hm2_flash_identify(struct hm2_flash_io *io)
 {
     uint8_t cmd[4] = {SPI_RES, 0, 0, 0}, sig = 0;
-    int r = frame(io, cmd, sizeof(cmd), &sig, 1);
+    int r = io->ops ? io->ops->identify(io, &sig) : frame(io, cmd, sizeof(cmd), &sig, 1);
     if (r)
         return r;
     io->signature = sig;
@@ -158,6 +158,8 @@ int hm2_flash_identify(struct hm2_flash_io *io)
 int hm2_flash_jedec(struct hm2_flash_io *io, uint8_t id[3])
 {
     uint8_t cmd = SPI_RDID;
+    if (io->ops)
+        return fail(io, -ENOTSUP, "%s: no JEDEC ID through this interface", io->llio->name);
     return frame(io, &cmd, 1, id, 3);
 }
 
@@ -177,6 +179,14 @@ static void progress(struct hm2_flash_io *io, const char *phase, uint32_t done, 
         io->progress(io->progress_ctx, phase, done, total);
 }
 
+static int read_chunk(struct hm2_flash_io *io, uint32_t a, uint8_t *buf, uint32_t len)
+{
+    if (io->ops)
+        return io->ops->read(io, a, buf, len);
+    uint8_t cmd[4] = {SPI_READ, (uint8_t)(a >> 16), (uint8_t)(a >> 8), (uint8_t)a};
+    return frame(io, cmd, sizeof(cmd), buf, len);
+}
+
 int hm2_flash_read(struct hm2_flash_io *io, uint32_t addr, uint8_t *buf, uint32_t n)
 {
     int r = check_range(io, addr, n);
@@ -184,8 +194,7 @@ int hm2_flash_read(struct hm2_flash_io *io, uint32_t addr, uint8_t *buf, uint32_
     for (uint32_t done = 0; !r && done < n; done += chunk) {
         uint32_t len = n - done < chunk ? n - done : chunk;
         uint32_t a = addr + done;
-        uint8_t cmd[4] = {SPI_READ, (uint8_t)(a >> 16), (uint8_t)(a >> 8), (uint8_t)a};
-        r = frame(io, cmd, sizeof(cmd), buf + done, len);
+        r = read_chunk(io, a, buf + done, len);
         progress(io, "Reading", done + len, n);
     }
     return r;
@@ -193,6 +202,8 @@ int hm2_flash_read(struct hm2_flash_io *io, uint32_t addr, uint8_t *buf, uint32_
 
 static int erase_sector(struct hm2_flash_io *io, uint32_t addr)
 {
+    if (io->ops)
+        return io->ops->erase_sector(io, addr);
     int r = write_enable(io, "sector erase", addr);
     uint8_t cmd[4] = {SPI_SE, (uint8_t)(addr >> 16), (uint8_t)(addr >> 8), (uint8_t)addr};
     if (!r)
@@ -204,6 +215,8 @@ static int erase_sector(struct hm2_flash_io *io, uint32_t addr)
 
 static int program_page(struct hm2_flash_io *io, uint32_t addr, const uint8_t *data, uint32_t n)
 {
+    if (io->ops)
+        return io->ops->program_page(io, addr, data, n);
     int r = write_enable(io, "page program", addr);
     if (r)
         return r;
@@ -250,8 +263,7 @@ int hm2_flash_verify(struct hm2_flash_io *io, uint32_t addr, const uint8_t *data
     for (uint32_t done = 0; !r && done < n; done += chunk) {
         uint32_t len = n - done < chunk ? n - done : chunk;
         uint32_t a = addr + done;
-        uint8_t cmd[4] = {SPI_READ, (uint8_t)(a >> 16), (uint8_t)(a >> 8), (uint8_t)a};
-        if ((r = frame(io, cmd, sizeof(cmd), buf, len)))
+        if ((r = read_chunk(io, a, buf, len)))
             break;
         for (uint32_t i = 0; i < len; i++)
             if (buf[i] != data[done + i]) {
@@ -294,13 +306,26 @@ int hm2_flash_boot_block_ok(struct hm2_flash_io *io, int *ok)
     return 0;
 }
 
-int hm2_flash_reload(struct hm2_flash_io *io, int fallback)
+size_t hm2_flash_iprog_words(int fallback, uint16_t *out, size_t max)
 {
     uint32_t a = fallback ? HM2_FLASH_FALLBACK_ADDR : HM2_FLASH_BOOT_ADDR;
     const uint16_t seq[] = {0xFFFF, 0xAA99, 0x5566, 0x3261, (uint16_t)a, 0x3281,
                             (uint16_t)(0x0B00u | (a >> 16)), 0x32A1, 0x0000, 0x32C1, 0x0B00,
                             0x30A1, 0x000E};
-    for (size_t i = 0; i < sizeof(seq) / sizeof(seq[0]); i++) {
+    size_t n = sizeof(seq) / sizeof(seq[0]);
+    if (n > max)
+        return 0;
+    memcpy(out, seq, sizeof(seq));
+    return n;
+}
+
+int hm2_flash_reload(struct hm2_flash_io *io, int fallback)
+{
+    if (io->ops)
+        return io->ops->reload(io, fallback);
+    uint16_t seq[16];
+    size_t n = hm2_flash_iprog_words(fallback, seq, 16);
+    for (size_t i = 0; i < n; i++) {
         int r = reg_write(io, HM2_FLASH_REG_ICAP, seq[i]);
         if (r)
             return r;
@@ -310,6 +335,8 @@ int hm2_flash_reload(struct hm2_flash_io *io, int fallback)
 
 int hm2_flash_boot_status(struct hm2_flash_io *io, uint32_t *bootsts)
 {
+    if (io->ops)
+        return fail(io, -ENOTSUP, "%s: no boot status through this interface", io->llio->name);
     int r = io->llio->read(io->llio, HM2_FLASH_REG_ICAP, bootsts, sizeof(*bootsts));
     if (r)
         return fail(io, r, "%s: read of the boot status failed (%s)", io->llio->name,

@@ -38,8 +38,25 @@ extern "C" {
 #define HM2_BOOTSTS_ID_ERROR 0x10u
 #define HM2_BOOTSTS_CRC_ERROR 0x20u
 
+struct hm2_flash_io;
+
+/* A flash reached another way than through the SPI registers (an Ethernet
+ * board's LBP16 memory space 3): when io->ops is set, these replace the SPI
+ * commands; sector loops, progress, verify and the checks stay the same.
+ * Each returns 0 or a negative errno with the reason in io->err. */
+struct hm2_flash_ops {
+    int (*identify)(struct hm2_flash_io *io, uint8_t *signature);
+    int (*read)(struct hm2_flash_io *io, uint32_t addr, uint8_t *buf, uint32_t n);
+    int (*erase_sector)(struct hm2_flash_io *io, uint32_t addr);
+    /* n <= HM2_FLASH_PAGE, within one page */
+    int (*program_page)(struct hm2_flash_io *io, uint32_t addr, const uint8_t *data, uint32_t n);
+    int (*reload)(struct hm2_flash_io *io, int fallback);
+};
+
 struct hm2_flash_io {
     hm2_llio_t *llio;
+    const struct hm2_flash_ops *ops; /* NULL: the hm2 SPI flash registers */
+    void *ops_ctx;
     /* Wait ns nanoseconds (a real sleep, or a simulated clock's advance). */
     void (*delay_ns)(void *ctx, uint64_t ns);
     void *delay_ctx;
@@ -63,7 +80,7 @@ const char *hm2_flash_size_text(uint8_t signature);
 
 /* Read the electronic signature and set io->signature and io->size. */
 int hm2_flash_identify(struct hm2_flash_io *io);
-/* JEDEC ID (RDID): manufacturer, type, capacity. */
+/* JEDEC ID (RDID): manufacturer, type, capacity (-ENOTSUP through ops). */
 int hm2_flash_jedec(struct hm2_flash_io *io, uint8_t id[3]);
 
 int hm2_flash_read(struct hm2_flash_io *io, uint32_t addr, uint8_t *buf, uint32_t n);
@@ -83,7 +100,11 @@ int hm2_flash_boot_block_ok(struct hm2_flash_io *io, int *ok);
 /* Make the FPGA reconfigure from the flash through ICAP (IPROG), from the
  * boot block (fallback = 0) or straight from the fallback image. */
 int hm2_flash_reload(struct hm2_flash_io *io, int fallback);
-/* The boot status (BOOTSTS bits) the firmware reports. */
+/* The Spartan-6 ICAP words of that reload (sync, GENERAL1-4 = the address
+ * to load, CMD = IPROG): the count written to out, 0 if max is too small. */
+size_t hm2_flash_iprog_words(int fallback, uint16_t *out, size_t max);
+/* The boot status (BOOTSTS bits) the firmware reports (-ENOTSUP through
+ * ops). */
 int hm2_flash_boot_status(struct hm2_flash_io *io, uint32_t *bootsts);
 
 #ifdef __cplusplus
