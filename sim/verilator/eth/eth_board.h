@@ -64,6 +64,10 @@ class EthBoard final : public Board {
     {
         return lb_.pin_names(firmware);
     }
+    uint32_t firmware_clock_low_hz(const std::string &firmware) const override
+    {
+        return lb_.firmware_clock_low_hz(firmware);
+    }
     PinBank &pins() override { return lb_.pins(); }
     uint64_t now_ns() const override { return lb_.now_ns(); }
     void run_until(uint64_t t_ns) override { lb_.run_until(t_ns); }

@@ -61,6 +61,14 @@ class Board {
         return {};
     }
 
+    // ClockLow of one of this build's firmwares for this board (0: unknown),
+    // whether it is loaded or not.
+    virtual uint32_t firmware_clock_low_hz(const std::string &firmware) const
+    {
+        (void)firmware;
+        return 0;
+    }
+
     // ---- pins --------------------------------------------------------------
     // The pin layer (levels, external drive, loops, quadrature sources and
     // probe statistics).  Its size never changes over the board's life.

@@ -73,6 +73,12 @@ LocalBusBoard::pin_names(const std::string &firmware) const
     return v;
 }
 
+uint32_t LocalBusBoard::firmware_clock_low_hz(const std::string &firmware) const
+{
+    const LbEntry *e = find(firmware);
+    return e ? e->info->clock_low_hz : 0;
+}
+
 const LbEntry *LocalBusBoard::find(const std::string &firmware) const
 {
     for (size_t i = 0; i < kNumLbModels; i++)

@@ -63,6 +63,7 @@ class LocalBusBoard final : public Board {
     std::vector<std::string> firmwares() const override;
     std::vector<std::pair<std::string, std::string>>
     pin_names(const std::string &firmware) const override;
+    uint32_t firmware_clock_low_hz(const std::string &firmware) const override;
     PinBank &pins() override { return pins_; }
     uint64_t now_ns() const override { return model_ ? model_->now_ns() : now_; }
     void run_until(uint64_t t_ns) override;

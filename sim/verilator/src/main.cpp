@@ -20,6 +20,7 @@
 #include "../eth/eth_board.h"
 #include "../eth/udp.h"
 #include "plant/machine.h"
+#include "sserial/remotes.h"
 #include "server.h"
 #include "vcd2fst.h"
 
@@ -34,6 +35,7 @@ struct Options {
     uint32_t udp_tick_us = 0; // --udp-tick: board time per servo datagram (0 = free-running)
     std::vector<vb_loop> loops;
     std::vector<vb_quad> quads;
+    std::vector<vb::sserial::RemoteSpec> remotes;
     bool list = false;
 };
 
@@ -43,7 +45,7 @@ void usage(FILE *f)
                  "usage: vboard --socket PATH --board NAME [--firmware NAME] [--freerun]\n"
                  "              [--loop FROM:TO[:inv]]... [--loop-file FILE]\n"
                  "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd|.fst] [--log]\n"
-                 "              [--spin USEC] [--socket-mode OCTAL] [--machine FILE]\n"
+                 "              [--spin USEC] [--socket-mode OCTAL] [--machine FILE] [--sserial P.C=TYPE]...\n"
                  "              [--flash FILE] [--flash-part m25p16] [--flash-speedup N]\n"
                  "       vboard --udp ADDR[:PORT] [--udp-tick USEC] [--socket PATH] --board 7i92|7i96s\n"
                  "              [--firmware NAME] [--flash FILE] ...\n"
@@ -157,6 +159,7 @@ int parse_args(int argc, char **argv, Options &o)
         {"flash", required_argument, nullptr, 'F'},   {"flash-part", required_argument, nullptr, 'P'},
         {"flash-speedup", required_argument, nullptr, 'S'},
         {"udp", required_argument, nullptr, 'U'},     {"udp-tick", required_argument, nullptr, 'T'},
+        {"sserial", required_argument, nullptr, 'R'},
         {nullptr, 0, nullptr, 0}};
     std::string err;
     int c;
@@ -172,6 +175,13 @@ int parse_args(int argc, char **argv, Options &o)
         case 'i': o.list = true; break;
         case 'd': o.dump = optarg; break;
         case 'M': o.machine = optarg; break;
+        case 'R': {
+            vb::sserial::RemoteSpec r;
+            if (!vb::sserial::parse_remote(optarg, r, err))
+                goto bad;
+            o.remotes.push_back(r);
+            break;
+        }
         case 'F': o.flash = optarg; break;
         case 'P': o.flash_part = optarg; break;
         case 'S':
@@ -300,6 +310,54 @@ bad:
     return 1;
 }
 
+// The firmware whose pin map places the Smart Serial channels: --firmware,
+// else the only firmware of this board that has Smart Serial pins.
+std::string sserial_firmware(const vb::Board &b, const Options &o, std::string &err)
+{
+    if (!o.firmware.empty())
+        return o.firmware;
+    if (b.configured())
+        return b.firmware();
+    std::string found;
+    for (const std::string &fw : b.firmwares())
+        for (const auto &pn : b.pin_names(fw))
+            if (pn.second.rfind("SSerial ", 0) == 0) {
+                if (!found.empty() && found != fw) {
+                    err = "--sserial: board " + b.name() + " has several firmwares with Smart "
+                          "Serial (" + found + ", " + fw + "): name one with --firmware";
+                    return "";
+                }
+                found = fw;
+                break;
+            }
+    if (found.empty())
+        err = "--sserial: no firmware of board " + b.name() + " has a Smart Serial port";
+    return found;
+}
+
+int attach_remotes(vb::Board &b, const Options &o, std::unique_ptr<vb::sserial::Remotes> &out)
+{
+    std::string err;
+    std::string fw = sserial_firmware(b, o, err);
+    auto r = std::make_unique<vb::sserial::Remotes>();
+    uint32_t clock_low = 0;
+    if (!fw.empty()) {
+        clock_low = b.configured() && b.firmware() == fw ? b.clock_low_hz() : 0;
+        if (!clock_low)
+            clock_low = b.firmware_clock_low_hz(fw);
+    }
+    if (fw.empty() || !clock_low ||
+        !r->configure(o.remotes, fw, b.pin_names(fw), clock_low, err)) {
+        if (err.empty())
+            err = "--sserial: unknown ClockLow of firmware " + fw;
+        std::fprintf(stderr, "vboard: %s\n", err.c_str());
+        return 1;
+    }
+    r->attach(b.pins(), b.now_ns());
+    out = std::move(r);
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -364,6 +422,10 @@ int main(int argc, char **argv)
         machine->attach(b.pins(), b.now_ns());
     }
 
+    std::unique_ptr<vb::sserial::Remotes> remotes;
+    if (!o.remotes.empty() && attach_remotes(*board, o, remotes) != 0)
+        return 1;
+
     int sfd = signalfd(-1, &mask, SFD_CLOEXEC);
     if (sfd < 0) {
         std::fprintf(stderr, "vboard: signalfd: %s\n", std::strerror(errno));
@@ -373,6 +435,7 @@ int main(int argc, char **argv)
     {
         vb::Server server(*board, o.server);
         server.set_plant(machine.get());
+        server.set_sserial(remotes.get());
         std::unique_ptr<vb::eth::UdpEndpoint> udp;
         if (!o.udp.empty()) {
             udp = std::make_unique<vb::eth::UdpEndpoint>(*eth, o.server.log);

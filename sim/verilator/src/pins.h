@@ -90,6 +90,7 @@ class PinBank {
     // pin reads that level unless the FPGA drives it or a DRIVE / loop
     // overrides it (the same precedence as a quadrature source).
     void set_agent(PinAgent *agent);
+    PinAgent *agent() const { return agent_; }
     void watch(uint32_t pin) { watch_[pin] = 1; }
     void own(uint32_t pin, bool level, uint64_t now);
     void agent_set(uint32_t pin, bool level, uint64_t now)

@@ -4,6 +4,7 @@
 #include "server.h"
 
 #include "plant/machine.h"
+#include "sserial/remotes.h"
 #include "vcd2fst.h"
 
 #include <cerrno>
@@ -48,6 +49,7 @@ const char *type_name(uint16_t t)
     case VB_PROBE_RESET: return "PROBE_RESET";
     case VB_DUMP: return "DUMP";
     case VB_PLANT: return "PLANT";
+    case VB_SSERIAL: return "SSERIAL";
     default: return "?";
     }
 }
@@ -351,6 +353,7 @@ Server::Reply Server::dispatch(Conn &c, const vb_header &h, const uint8_t *p, si
     case VB_LOOP: return r_loop(p, n);
     case VB_DUMP: return r_dump(p, n);
     case VB_PLANT: return r_plant(p, n);
+    case VB_SSERIAL: return r_sserial(p, n);
     default: {
         char b[80];
         std::snprintf(b, sizeof b, "unknown request type 0x%02x", h.type);
@@ -619,6 +622,20 @@ Server::Reply Server::r_plant(const uint8_t *p, size_t n)
     Reply r;
     std::string reply, err;
     r.status = plant_->command(cmd, board_.now_ns(), reply, err);
+    r.data = r.status < 0 ? msg_bytes(err) : std::vector<uint8_t>(reply.begin(), reply.end());
+    return r;
+}
+
+Server::Reply Server::r_sserial(const uint8_t *p, size_t n)
+{
+    if (!sserial_)
+        VB_FAIL(-ENOTSUP, "SSERIAL: no Smart Serial remote on this board (vboard --sserial P.C=TYPE)");
+    std::string cmd(reinterpret_cast<const char *>(p), n);
+    if (cmd.find('\0') != std::string::npos)
+        VB_FAIL(-EINVAL, "SSERIAL: the command contains a NUL byte");
+    Reply r;
+    std::string reply, err;
+    r.status = sserial_->command(cmd, board_.now_ns(), reply, err);
     r.data = r.status < 0 ? msg_bytes(err) : std::vector<uint8_t>(reply.begin(), reply.end());
     return r;
 }

@@ -14,6 +14,9 @@
 namespace vb::plant {
 class Machine;
 }
+namespace vb::sserial {
+class Remotes;
+}
 
 namespace vb {
 
@@ -64,6 +67,8 @@ class Server {
     // The machine behind the pins (vboard --machine): VB_PLANT requests and
     // one trace point per host request.
     void set_plant(plant::Machine *m) { plant_ = m; }
+    // The Smart Serial remotes (vboard --sserial): VB_SSERIAL requests.
+    void set_sserial(sserial::Remotes *r) { sserial_ = r; }
     // Serve `h` from the poll loop too (not owned; must outlive run()).
     void add_handler(FdHandler *h) { handlers_.push_back(h); }
 
@@ -108,6 +113,7 @@ class Server {
     Reply r_epp(const uint8_t *p, size_t n);
     Reply r_stall(const uint8_t *p, size_t n);
     Reply r_plant(const uint8_t *p, size_t n);
+    Reply r_sserial(const uint8_t *p, size_t n);
 
     Board &board_;
     ServerOptions opt_;
@@ -119,6 +125,7 @@ class Server {
     int signal_fd_ = -1;
     bool stopping_ = false; // a signal arrived while a request ran
     plant::Machine *plant_ = nullptr;
+    sserial::Remotes *sserial_ = nullptr;
     std::vector<FdHandler *> handlers_;
     // A datagram waits on a handler's fd: free-running stops to serve it
     // (a board slower than real time would otherwise answer a slice late).

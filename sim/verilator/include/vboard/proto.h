@@ -109,6 +109,10 @@ enum vb_type {
     VB_PLANT = 0x70,       /* req: a text command (UTF-8, the whole payload):
                               "status", "trace PATH", "trace off";
                               rep: JSON text (docs/vboard-machine.md) */
+    /* --- Smart Serial remote boards (vboard --sserial P.C=TYPE) --------- */
+    VB_SSERIAL = 0x71,     /* req: a text command (the whole payload):
+                              "status", "set P.C KEY VALUE...";
+                              rep: JSON text (docs/sserial.md) */
 };
 
 /* ---- VB_HELLO ----------------------------------------------------------- */
