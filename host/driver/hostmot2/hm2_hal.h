@@ -22,6 +22,7 @@ void hm2_unregister_board(hm2_llio_t *llio);
 
 /* HAL function bodies (exported as <pfx>.read etc.) */
 void hm2_read(void *arg, long period);
+void hm2_read_request(void *arg, long period);
 void hm2_write(void *arg, long period);
 void hm2_read_gpio(void *arg, long period);
 void hm2_write_gpio(void *arg, long period);
@@ -30,6 +31,10 @@ void hm2_pet_watchdog(void *arg, long period);
 /* ---- TRAM transfers (tram.c; modules register blocks via module_api.h) ---- */
 int hm2_tram_allocate(hostmot2_t *hm2);
 int hm2_tram_read(hostmot2_t *hm2);
+/* The read in two halves (llio request/receive_queued_reads): queue and
+ * send every read; later wait for the reply and fill the buffers. */
+int hm2_tram_read_request(hostmot2_t *hm2);
+int hm2_tram_read_receive(hostmot2_t *hm2);
 int hm2_tram_write(hostmot2_t *hm2);
 void hm2_tram_free(hostmot2_t *hm2);
 

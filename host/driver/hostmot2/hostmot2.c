@@ -69,13 +69,36 @@ static void io_failed(hostmot2_t *hm2)
     hm2->needs_reset = true;
 }
 
-void hm2_read(void *arg, long period)
+/* <pfx>.read-request (boards with request/receive_queued_reads): send this
+ * period's reads now; <pfx>.read then only waits for the reply.  A second
+ * request before the read replaces the first. */
+void hm2_read_request(void *arg, long period)
 {
     hostmot2_t *hm2 = ((struct hm2_funct_handle *)arg)->board;
     if (!hm2 || *hm2->io_error)
         return;
     hm2->llio->period_ns = period;
-    if (hm2_tram_read(hm2)) {
+    hm2->read_requested = false;
+    if (hm2_tram_read_request(hm2)) {
+        hm2_msg(hm2, HM2_ERR, "read request failed, setting io_error (clear it to retry)");
+        io_failed(hm2);
+        return;
+    }
+    hm2->read_requested = true;
+}
+
+void hm2_read(void *arg, long period)
+{
+    hostmot2_t *hm2 = ((struct hm2_funct_handle *)arg)->board;
+    if (!hm2 || *hm2->io_error) {
+        if (hm2)
+            hm2->read_requested = false;
+        return;
+    }
+    hm2->llio->period_ns = period;
+    bool requested = hm2->read_requested;
+    hm2->read_requested = false;
+    if (requested ? hm2_tram_read_receive(hm2) : hm2_tram_read(hm2)) {
         hm2_msg(hm2, HM2_ERR, "read failed, setting io_error (clear it to retry)");
         io_failed(hm2);
         return;
@@ -170,6 +193,9 @@ static int export_functions(hostmot2_t *hm2, struct hm2_funct_handle *h)
     int id = hm2->llio->comp_id, r;
     if ((r = hal_export_functf(hm2_read, h, 1, 0, id, "%s.read", pfx)))
         return hm2_hal_fail(hm2, r, "read");
+    if (hm2->llio->request_queued_reads &&
+        (r = hal_export_functf(hm2_read_request, h, 1, 0, id, "%s.read-request", pfx)))
+        return hm2_hal_fail(hm2, r, "read-request");
     if ((r = hal_export_functf(hm2_write, h, 1, 0, id, "%s.write", pfx)))
         return hm2_hal_fail(hm2, r, "write");
     if (hm2->watchdog_s) {

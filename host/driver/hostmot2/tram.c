@@ -96,7 +96,7 @@ int hm2_tram_allocate(hostmot2_t *hm2)
     return 0;
 }
 
-int hm2_tram_read(hostmot2_t *hm2)
+static int queue_reads(hostmot2_t *hm2)
 {
     hm2_llio_t *llio = hm2->llio;
     struct tram_list *l = &hm2->tram->rd;
@@ -111,11 +111,38 @@ int hm2_tram_read(hostmot2_t *hm2)
             hm2_msg(hm2, HM2_ERR, "error reading %d words at 0x%04X: %s", l->e[i].words,
                     l->e[i].addr, strerror(-r));
     }
+    return r;
+}
+
+int hm2_tram_read(hostmot2_t *hm2)
+{
+    hm2_llio_t *llio = hm2->llio;
+    int r = queue_reads(hm2);
     if (!r && llio->send_queued_reads) {
         r = llio->send_queued_reads(llio);
         if (r)
             hm2_msg(hm2, HM2_ERR, "error flushing queued reads: %s", strerror(-r));
     }
+    return r;
+}
+
+int hm2_tram_read_request(hostmot2_t *hm2)
+{
+    hm2_llio_t *llio = hm2->llio;
+    int r = queue_reads(hm2);
+    if (!r) {
+        r = llio->request_queued_reads(llio);
+        if (r)
+            hm2_msg(hm2, HM2_ERR, "error sending the read request: %s", strerror(-r));
+    }
+    return r;
+}
+
+int hm2_tram_read_receive(hostmot2_t *hm2)
+{
+    int r = hm2->llio->receive_queued_reads(hm2->llio);
+    if (r)
+        hm2_msg(hm2, HM2_ERR, "error receiving the requested reads: %s", strerror(-r));
     return r;
 }
 

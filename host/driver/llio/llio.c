@@ -51,6 +51,17 @@ int hm2_llio_validate(const hm2_llio_t *llio, char *err, size_t len)
                  llio->name);
         return -EINVAL;
     }
+    if (!!llio->request_queued_reads != !!llio->receive_queued_reads) {
+        snprintf(err, len,
+                 "llio %s has only one of request_queued_reads/receive_queued_reads (need both "
+                 "or none)",
+                 llio->name);
+        return -EINVAL;
+    }
+    if (llio->request_queued_reads && q == 0) {
+        snprintf(err, len, "llio %s splits queued reads but has no queued access", llio->name);
+        return -EINVAL;
+    }
     if (!!llio->reset != !!llio->program_fpga) {
         snprintf(err, len, "llio %s has only one of reset/program_fpga (need both or none)",
                  llio->name);

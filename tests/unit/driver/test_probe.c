@@ -465,6 +465,12 @@ static void test_queued_and_debug(void)
     hm2_free(hm2);
 }
 
+static int fake_split(hm2_llio_t *l)
+{
+    (void)l;
+    return 0;
+}
+
 static void test_llio_validation(void)
 {
     int err = 0;
@@ -482,6 +488,18 @@ static void test_llio_validation(void)
     im.llio.send_queued_writes = NULL;
     CHECK(probe(NULL, &err) == NULL);
     CHECK(tlog_contains(&lg, "only some of the queued-access functions"));
+    /* the split read (read-request) comes in pairs, on top of the queued access */
+    t_setup_5i20(&im);
+    hm2_image_llio_set_queued(&im, 1);
+    im.llio.request_queued_reads = im.llio.send_queued_reads;
+    CHECK(probe(NULL, &err) == NULL);
+    CHECK(tlog_contains(&lg, "only one of request_queued_reads/receive_queued_reads"));
+    t_setup_5i20(&im);
+    hm2_image_llio_set_queued(&im, 0);
+    im.llio.request_queued_reads = fake_split;
+    im.llio.receive_queued_reads = fake_split;
+    CHECK(probe(NULL, &err) == NULL);
+    CHECK(tlog_contains(&lg, "splits queued reads but has no queued access"));
 }
 
 static void test_pin_names(void)

@@ -56,11 +56,29 @@ long hm2_eth_read_timeout_ns(int32_t param, long period_ns)
     return t < MIN_TIMEOUT_NS ? MIN_TIMEOUT_NS : t;
 }
 
+/* A datagram that is the reply to the pending servo read (a synchronous
+ * request made between read-request and read meets it first) is kept for
+ * the read; true if it was. */
+static bool keep_pending_reply(struct hm2_eth_board *b, const uint8_t *buf, ssize_t n)
+{
+    if (!b->req.pending || b->req.kept > 0 || n <= 0 ||
+        lbp16_check_read_reply(buf, (size_t)n, b->rpkt.reply_len, b->read_seq, NULL))
+        return false;
+    memcpy(b->req.reply, buf, (size_t)n);
+    b->req.kept = n;
+    return true;
+}
+
 static void drain(struct hm2_eth_board *b)
 {
-    uint8_t junk[LBP16_MAX_PACKET];
-    while (recv(b->fd, junk, sizeof(junk), MSG_DONTWAIT) >= 0 || errno == EINTR)
-        b->stats.stale++;
+    uint8_t junk[LBP16_MAX_PACKET + 1];
+    for (;;) {
+        ssize_t n = recv(b->fd, junk, sizeof(junk), MSG_DONTWAIT | MSG_TRUNC);
+        if (n < 0 && errno != EINTR)
+            return;
+        if (n >= 0 && !keep_pending_reply(b, junk, n))
+            b->stats.stale++;
+    }
 }
 
 static int send_pkt(struct hm2_eth_board *b, const struct lbp16_pkt *p)
@@ -122,7 +140,8 @@ int hm2_eth_transact(struct hm2_eth_board *b, const struct lbp16_pkt *p, uint8_t
                 b->stats.replies++;
                 return 0;
             }
-            b->stats.stale++;
+            if (!keep_pending_reply(b, buf, n))
+                b->stats.stale++;
         }
         b->stats.timeouts++;
     }
@@ -238,7 +257,7 @@ static void account(struct hm2_eth_board *b, bool bad)
     *e->exceeded = *e->level >= limit;
 }
 
-static int eth_send_queued_reads(hm2_llio_t *llio)
+static int eth_request_queued_reads(hm2_llio_t *llio)
 {
     struct hm2_eth_board *b = (struct hm2_eth_board *)llio;
     if (*b->pins->exceeded) {
@@ -247,42 +266,66 @@ static int eth_send_queued_reads(hm2_llio_t *llio)
         *b->pins->level = 0;
         logf_(b, HM2_PRINT, "hm2_eth: %s: packet error level reset, trying again", b->ip);
     }
-    int nrq = b->nrq;
+    b->req.pending = false;
+    b->req.nrq = b->nrq;
     b->nrq = 0;
     b->read_seq++;
-    if (lbp16_add_read_tail(&b->rpkt, b->read_seq))
+    if (lbp16_add_read_tail(&b->rpkt, b->read_seq)) {
+        logf_(b, HM2_ERR, "hm2_eth: %s: the servo-cycle read does not fit in one datagram",
+              b->ip);
         return -ENOSPC;
-    uint8_t buf[LBP16_MAX_PACKET + 1];
+    }
     drain(b);
-    int r = send_pkt(b, &b->rpkt);
+    b->req.send_err = send_pkt(b, &b->rpkt);
     b->stats.read_packets++;
-    bool lost = true, wlost = false;
-    long to = 0;
-    struct lbp16_reply_check c;
-    if (r == 0) {
-        /* outside a thread (the core's first transfers at load time) a
-         * read may wait as long as a synchronous one */
-        to = llio->period_ns > 0
-                 ? hm2_eth_read_timeout_ns(*b->pins->read_timeout, llio->period_ns)
-                 : LOAD_TIME_READ_TIMEOUT_NS;
-        int64_t deadline = mono_ns() + to;
-        for (;;) {
-            ssize_t n = recv_until(b, buf, sizeof(buf), deadline);
-            if (n < 0)
-                break;
-            if (lbp16_check_read_reply(buf, (size_t)n, b->rpkt.reply_len, b->read_seq, &c)) {
-                b->stats.stale++;
-                continue;
-            }
-            lost = false;
-            break;
+    /* outside a thread (the core's first transfers at load time) a read
+     * may wait as long as a synchronous one */
+    b->req.timeout_ns = llio->period_ns > 0
+                            ? hm2_eth_read_timeout_ns(*b->pins->read_timeout, llio->period_ns)
+                            : LOAD_TIME_READ_TIMEOUT_NS;
+    b->req.deadline = mono_ns() + b->req.timeout_ns;
+    b->req.kept = 0;
+    b->req.pending = true;
+    return 0;
+}
+
+/* Wait for the pending request's reply; its length in b->req.reply or
+ * -ETIMEDOUT (-errno: the request was not sent). */
+static ssize_t await_reply(struct hm2_eth_board *b, struct lbp16_reply_check *c)
+{
+    if (b->req.send_err)
+        return b->req.send_err;
+    ssize_t n = b->req.kept;
+    while (n <= 0) {
+        n = recv_until(b, b->req.reply, sizeof(b->req.reply), b->req.deadline);
+        if (n < 0)
+            return n;
+        if (lbp16_check_read_reply(b->req.reply, (size_t)n, b->rpkt.reply_len, b->read_seq,
+                                   NULL)) {
+            b->stats.stale++;
+            n = 0;
         }
     }
+    lbp16_check_read_reply(b->req.reply, (size_t)n, b->rpkt.reply_len, b->read_seq, c);
+    return n;
+}
+
+static int eth_receive_queued_reads(hm2_llio_t *llio)
+{
+    struct hm2_eth_board *b = (struct hm2_eth_board *)llio;
+    if (!b->req.pending) {
+        logf_(b, HM2_ERR, "hm2_eth: %s: receive without a read request", b->ip);
+        return -EINVAL;
+    }
+    struct lbp16_reply_check c = {0, 0, 0};
+    ssize_t n = await_reply(b, &c);
+    b->req.pending = false;
+    bool lost = n < 0, wlost = false;
     if (!lost) {
         b->stats.replies++;
         size_t off = 0;
-        for (int i = 0; i < nrq; i++) {
-            memcpy(b->rq[i].dest, buf + off, b->rq[i].size);
+        for (int i = 0; i < b->req.nrq; i++) {
+            memcpy(b->rq[i].dest, b->req.reply + off, b->rq[i].size);
             off += b->rq[i].size;
         }
         wlost = c.write_seq != b->write_seq;
@@ -296,12 +339,12 @@ static int eth_send_queued_reads(hm2_llio_t *llio)
         b->silent = false;
     } else {
         b->stats.timeouts++;
+        int e = b->req.send_err;
         if (!b->silent)
             logf_(b, HM2_ERR,
                   "hm2_eth: %s: no reply to the servo-cycle read within %ld us%s%s; keeping the "
                   "last data (reported once until it answers again)",
-                  b->ip, to / 1000,
-                  r ? ": " : "", r ? strerror(-r) : "");
+                  b->ip, b->req.timeout_ns / 1000, e ? ": " : "", e ? strerror(-e) : "");
         b->silent = true;
     }
     account(b, lost || wlost);
@@ -313,6 +356,12 @@ static int eth_send_queued_reads(hm2_llio_t *llio)
         return -EIO;
     }
     return 0;
+}
+
+static int eth_send_queued_reads(hm2_llio_t *llio)
+{
+    int r = eth_request_queued_reads(llio);
+    return r ? r : eth_receive_queued_reads(llio);
 }
 
 static int eth_queue_write(hm2_llio_t *llio, uint32_t addr, const void *buffer, size_t size)
@@ -429,6 +478,8 @@ int hm2_eth_setup(struct hm2_eth_board *b, const char *ip, int index, hm2_log_fn
     b->llio.write = eth_write;
     b->llio.queue_read = eth_queue_read;
     b->llio.send_queued_reads = eth_send_queued_reads;
+    b->llio.request_queued_reads = eth_request_queued_reads;
+    b->llio.receive_queued_reads = eth_receive_queued_reads;
     b->llio.queue_write = eth_queue_write;
     b->llio.send_queued_writes = eth_send_queued_writes;
     b->llio.priv = b;

@@ -15,6 +15,10 @@
  * packet-error-decrement in a good cycle).  At packet-error-limit the read
  * fails (the hostmot2 core sets io_error and stops writing) until io_error
  * is cleared.
+ *
+ * The read can be split (hm2_<board>.<n>.read-request, hostmot2(9)): the
+ * request goes out when read-request runs and read only waits for the
+ * reply; packet-read-timeout then counts from the request.
  */
 #ifndef HM2_ETH_LLIO_H
 #define HM2_ETH_LLIO_H
@@ -22,6 +26,7 @@
 #include <netinet/in.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <sys/types.h>
 
 #include "hm2/boards.h"
 #include "hm2/hm2.h"
@@ -73,6 +78,16 @@ struct hm2_eth_board {
     } rq[HM2_ETH_MAX_QUEUED];
     int nrq;
     uint32_t read_seq, write_seq;
+    /* the servo read sent (request_queued_reads) and not yet received */
+    struct {
+        bool pending;
+        int send_err;     /* 0, or why the request could not be sent */
+        int nrq;          /* queued reads it carries */
+        long timeout_ns;  /* packet-read-timeout, counted from the send */
+        int64_t deadline; /* monotonic ns */
+        ssize_t kept;     /* > 0: its reply, seen early by a synchronous read */
+        uint8_t reply[LBP16_MAX_PACKET + 1];
+    } req;
     uint32_t sync_tag; /* last tag of a synchronous request */
     /* errors */
     struct hm2_eth_errpins *pins, local_pins;

@@ -223,6 +223,7 @@ struct hostmot2 {
     struct hm2_raw_state *raw_s;
     hal_bit_t *io_error; /* param storage, hal_malloc'd */
     bool needs_reset;
+    bool read_requested; /* <pfx>.read-request sent this period's reads */
     bool registered;
     void *handle; /* struct hm2_funct_handle (HAL memory), see hostmot2.c */
 };

@@ -74,6 +74,17 @@ struct hm2_llio {
     int (*queue_write)(hm2_llio_t *self, uint32_t addr, const void *buffer, size_t size);
     int (*send_queued_writes)(hm2_llio_t *self);
 
+    /* ---- split queued reads (optional, both or none; need the queued
+     * access above) ----
+     * request_queued_reads() sends every queued read and returns without
+     * waiting; receive_queued_reads() waits for the answer to that request
+     * and fills the buffers (the two together do what send_queued_reads()
+     * does).  With them the core exports <board>.read-request (hostmot2(9)):
+     * the request goes out early in the thread and the reply travels while
+     * other functions (other boards' requests) run. */
+    int (*request_queued_reads)(hm2_llio_t *self);
+    int (*receive_queued_reads)(hm2_llio_t *self);
+
     /* ---- FPGA configuration (optional; NULL = board cannot be programmed,
      * firmware= is then ignored) ----
      * reset(): put the FPGA into the unconfigured state and check it got
