@@ -15,6 +15,7 @@
 #   machines    what the machine models (vboard --machine) add to a servo cycle
 #   pluto       Pluto-P firmware: EPP traffic, PWM frequency, step rate
 #   pluto-host  Pluto-P driver: EPP cycles and host time per servo cycle
+#   servo       hm2 servo read+write: socket vs in-process board (hm2_sim inproc=1), scaling
 #   synth       yosys LUT/FF per module, nextpnr-ice40 fmax of a slice
 #   vboard      virtual board round trips
 # This script runs them in turn and keeps going when one fails, so one broken

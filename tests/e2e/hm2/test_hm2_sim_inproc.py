@@ -14,6 +14,7 @@ hm2_sim left in HAL."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import uuid
 from pathlib import Path
@@ -240,3 +241,27 @@ def test_library_exports_one_entry_point() -> None:
     )
     names = [line.split()[-1] for line in nm.stdout.splitlines() if line.strip()]
     assert names == ["vbi_get_api"], names
+
+
+def test_stats_line(tmp_path: Path) -> None:
+    """stats=1: one line per board at unload."""
+    r = run_hal(
+        tmp_path,
+        "loadrt hostmot2\n"
+        + inproc_loadline("stats=1")
+        + f"\nloadrt threads name1=servo period1=1000000\naddf {PFX}.read servo\n"
+        f"addf {PFX}.write servo\nsimrun 7ms\n",
+    )
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    m = re.search(
+        rf"{PFX}: in-process board: (\d+) cycles \(queued reads \+ writes\); per cycle "
+        r"(\d+) ns in the board calls, "
+        r"(\d+) ns in the model, (-?\d+) ns transport; ([\d.]+) words read, ([\d.]+) written",
+        out,
+    )
+    assert m, out
+    calls, model, transport = int(m.group(2)), int(m.group(3)), int(m.group(4))
+    assert int(m.group(1)) == 8  # 7 servo periods and hostmot2's transfer at load
+    assert abs(calls - model - transport) <= 1 and 0 < model and 0 <= transport < calls
+    assert float(m.group(5)) > 0 and float(m.group(6)) > 0

@@ -44,7 +44,8 @@ RTAPI_EXPORT __attribute__((used)) const char *rtapi_info_description_socket =
     "socket path of each virtual board (bin/vboard --socket)";
 RTAPI_EXPORT __attribute__((used)) int rtapi_info_size_socket = NB;
 static char *board[NB];
-RTAPI_MP_ARRAY_STRING(board, NB, "board of each socket (5i20, ...; optional: checked when given), or of each in-process board (inproc=1)");
+RTAPI_MP_ARRAY_STRING(board, NB, "board of each socket (5i20, ...; optional: checked when "
+                                  "given), or of each in-process board (inproc=1)");
 static char *config[NB];
 RTAPI_MP_ARRAY_STRING(config, NB, "config string for the boards (see hostmot2(9) manpage)");
 static int host_time = 1;
@@ -60,6 +61,9 @@ RTAPI_MP_INT(inproc, "1: run the boards inside this process (lib/libvboard_inpro
                      "talking to bin/vboard sockets");
 static char *firmware[NB];
 RTAPI_MP_ARRAY_STRING(firmware, NB, "inproc=1: built-in firmware of each board (SVST8_4, ...)");
+static int stats = 0;
+RTAPI_MP_INT(stats, "inproc=1: 1 prints, at unload, where each board's servo periods spent "
+                    "their time (board model vs transport)");
 static char *loops[NB];
 RTAPI_MP_ARRAY_STRING(loops, NB, "inproc=1: pin loops of each board, FROM:TO[:inv] words");
 
@@ -99,8 +103,11 @@ static const char *where(int i)
 static void release_one(void *slots, int i)
 {
     struct hs_slot *s = &((struct hs_slot *)slots)[i];
+    if (s->registered && inproc && stats)
+        hm2_sim_inproc_report(&s->ib);
     if (s->registered) {
-        rtapi_print("%s: dropping virtual board %s%s\n", llio_of(s)->name, inproc ? "" : "at ", where(i));
+        rtapi_print("%s: dropping virtual board %s%s\n", llio_of(s)->name, inproc ? "" : "at ",
+                    where(i));
         hm2_unregister(llio_of(s));
     }
     if (s->set_up && inproc)

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <time.h>
 
 #include "hm2/bitfile.h"
 
@@ -103,6 +104,13 @@ static uint64_t host_time(struct hm2_sim_inproc *ib)
     return ib->now ? (uint64_t)ib->now() : 0;
 }
 
+static uint64_t mono_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
+
 static int check_xfer(struct hm2_sim_inproc *ib, uint32_t addr, size_t size, const char *op)
 {
     if ((addr & 3u) || (size & 3u) || size == 0 || addr > 0xFFFFu || size > 0x10000u) {
@@ -194,7 +202,14 @@ static int ip_send_queued_reads(hm2_llio_t *llio)
     if (n == 0)
         return 0;
     pthread_mutex_lock(&ib->lock);
+    if (!ib->have_base) {
+        ib->api->stats(ib->vb, &ib->base);
+        ib->have_base = 1;
+    }
+    uint64_t t0 = mono_ns();
     int r = ib->api->read(ib->vb, host_time(ib), ib->rx, ib->rdest, (size_t)n);
+    ib->flush_ns += mono_ns() - t0;
+    ib->read_flushes++;
     pthread_mutex_unlock(&ib->lock);
     if (r) {
         char what[64];
@@ -251,7 +266,10 @@ static int ip_send_queued_writes(hm2_llio_t *llio)
     for (int i = 0; i < n; i++) /* wbuf may have moved while queueing */
         ib->wsrc[i] = ib->wbuf + ib->woff[i];
     pthread_mutex_lock(&ib->lock);
+    uint64_t t0 = mono_ns();
     int r = ib->api->write(ib->vb, host_time(ib), ib->wx, ib->wsrc, (size_t)n);
+    ib->flush_ns += mono_ns() - t0;
+    ib->write_flushes++;
     pthread_mutex_unlock(&ib->lock);
     if (r) {
         char what[64];
@@ -378,7 +396,8 @@ int hm2_sim_inproc_loops(struct hm2_sim_inproc *ib, const char *spec)
         unsigned from, to;
         char inv[8] = "", tail;
         int k = sscanf(word, "%u:%u:%7[a-z]%c", &from, &to, inv, &tail);
-        if (!(k == 2 || (k == 3 && strcmp(inv, "inv") == 0)) || strspn(word, "0123456789:inv") != n) {
+        int ok = k == 2 || (k == 3 && strcmp(inv, "inv") == 0);
+        if (!ok || strspn(word, "0123456789:inv") != n) {
             IB_LOG(ib, HM2_ERR, "hm2_sim: bad loop '%s': want FROM:TO or FROM:TO:inv (I/O pin "
                                 "numbers)", word);
             return -EINVAL;
@@ -392,6 +411,30 @@ int hm2_sim_inproc_loops(struct hm2_sim_inproc *ib, const char *spec)
         }
     }
     return 0;
+}
+
+void hm2_sim_inproc_report(struct hm2_sim_inproc *ib)
+{
+    if (!ib->vb)
+        return;
+    struct vbi_stats st;
+    pthread_mutex_lock(&ib->lock);
+    ib->api->stats(ib->vb, &st);
+    uint64_t periods = ib->read_flushes, flush_ns = ib->flush_ns;
+    pthread_mutex_unlock(&ib->lock);
+    if (periods == 0) {
+        IB_LOG(ib, HM2_PRINT, "%s: in-process board: no queued reads yet", ib->llio.name);
+        return;
+    }
+    /* since the first flush (setup's calls left out) */
+    double per = (double)flush_ns / (double)periods;
+    double model = (double)(st.board_ns - ib->base.board_ns) / (double)periods;
+    IB_LOG(ib, HM2_PRINT,
+           "%s: in-process board: %llu cycles (queued reads + writes); per cycle %.0f ns in the "
+           "board calls, %.0f ns in the model, %.0f ns transport; %.1f words read, %.1f written",
+           ib->llio.name, (unsigned long long)periods, per, model, per - model,
+           (double)(st.read_words - ib->base.read_words) / (double)periods,
+           (double)(st.write_words - ib->base.write_words) / (double)periods);
 }
 
 void hm2_sim_inproc_teardown(struct hm2_sim_inproc *ib)
