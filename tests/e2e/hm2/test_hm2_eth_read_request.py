@@ -73,7 +73,7 @@ def session(boards: list[tuple[Path, str]], split: bool, rates: tuple[int, int])
     s += "".join(f"addf {b}.read servo\n" for b in BOARDS)
     s += "".join(f"addf {b}.write servo\n" for b in BOARDS)
     for b, rate in zip(BOARDS, rates):
-        s += f"setp {b}.packet-read-timeout 500000000\n"
+        s += f"setp {b}.packet-read-timeout 2000000000\n"
         for sg, vel in (("00", rate / 100), ("01", -rate / 200)):
             s += (
                 f"setp {b}.stepgen.{sg}.control-type 1\n"
