@@ -78,6 +78,40 @@ def bench(name: str, bit: Path, d: Path) -> None:
     print(f"  {name:10} {'total':12} {'':8}        {total:7.2f} s board time, {wall:7.1f} s wall")
 
 
+def bench_backup(d: Path) -> None:
+    """--backup-flash of the whole M25P16 (2 MiB, byte by byte); the file
+    must equal the board's flash file."""
+    flash = d / "backup-src.bin"
+    out = d / "backup.bin"
+    with vboard.VBoardProcess(d / "b.sock", "5i25", "7I76x2", args=["--flash", str(flash)]):
+        t0 = time.monotonic()
+        p = subprocess.run(
+            [
+                str(BUILD / "bin" / "hm2flash"),
+                "--device",
+                "5i25",
+                "--addr",
+                f"sim:{d / 'b.sock'}",
+                "--backup-flash",
+                str(out),
+            ],
+            capture_output=True,
+            text=True,
+            timeout=3600,
+        )
+        wall = time.monotonic() - t0
+    if p.returncode != 0:
+        raise SystemExit(f"hm2flash --backup-flash failed: {p.stderr}")
+    if out.read_bytes() != flash.read_bytes():
+        raise SystemExit("hm2flash --backup-flash: the backup differs from the board's flash")
+    m = re.search(r"100% (\d+) bytes in ([\d.]+) s", p.stdout)
+    assert m, p.stdout
+    print(
+        f"  backup     {'Reading':12} {int(m.group(1)):8} bytes  {float(m.group(2)):7.2f} s board"
+        f" time, {wall:7.1f} s wall (file equal to the flash)"
+    )
+
+
 def main() -> None:
     d = Path(tempfile.mkdtemp(prefix="flb"))
     small = vboard.firmware_file("5i25", "7I76x2")
@@ -96,6 +130,7 @@ def main() -> None:
     bench("7I76x2", small, d)
     if os.environ.get("BENCH_FLASH_FULL", "1") != "0":
         bench("LX9-size", big, d)
+        bench_backup(d)
 
 
 if __name__ == "__main__":

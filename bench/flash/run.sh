@@ -5,8 +5,9 @@
 # commands per byte, load time of an LX9 bitstream), then hm2flash's flash
 # write time on the virtual 5i25 with the flash part's own timing (board
 # time per phase, and the wall time of the simulation).
-# BENCH_FLASH_FULL=0 skips the full-size (342,816-byte) image, which takes
-# minutes of simulation.  Runnable on its own.
+# BENCH_FLASH_FULL=0 skips the full-size (342,816-byte) image and the
+# --backup-flash of the whole 2 MiB M25P16, which take minutes of simulation
+# (make test backs up a 128 KiB M25P10-A instead: tests/flash).  Runnable on its own.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 BUILD="${HM_BUILD:-$ROOT/build}"

@@ -21,6 +21,7 @@ import vboard  # noqa: E402
 FLASH_SIZE = 2 << 20  # M25P16
 BOOT, FALLBACK, USER = 0x000000, 0x010000, 0x100000
 SECTOR = 0x10000
+PAGE_SIZE = 256
 # The boot block stock mesaflash writes (tests/data/eth/mesaflash/
 # 7i92-bootblock.hex, recorded by the Ethernet tests): sync, GENERAL1/2 =
 # user address 0x100000 with read opcode 0x0B, GENERAL3/4 = fallback

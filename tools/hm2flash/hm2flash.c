@@ -196,7 +196,10 @@ static uint32_t area_addr(const struct hm2flash_board *bd, const struct opts *o)
 
 static uint32_t area_size(const struct hm2flash_board *bd, const struct opts *o)
 {
-    return o->fallback ? bd->user_addr - bd->fallback_addr : bd->io.size - bd->user_addr;
+    uint32_t end = bd->io.size < bd->user_addr ? bd->io.size : bd->user_addr;
+    if (o->fallback)
+        return end > bd->fallback_addr ? end - bd->fallback_addr : 0;
+    return bd->io.size > bd->user_addr ? bd->io.size - bd->user_addr : 0; /* small flash: none */
 }
 
 static int check_boot_block(struct hm2flash_board *bd, const struct opts *o)

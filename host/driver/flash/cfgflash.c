@@ -134,6 +134,11 @@ uint32_t hm2_flash_size_of(uint8_t sig)
     return sig >= 0x10 && sig <= 0x16 ? (128u * 1024u) << (sig - 0x10) : 0;
 }
 
+uint32_t hm2_flash_sector_of(uint8_t sig)
+{
+    return sig == 0x10 ? 0x8000u : HM2_FLASH_SECTOR;
+}
+
 const char *hm2_flash_size_text(uint8_t sig)
 {
     static const char *const t[] = {"1 Mbit", "2 Mbit", "4 Mbit", "8 Mbit",
@@ -149,6 +154,7 @@ int hm2_flash_identify(struct hm2_flash_io *io)
         return r;
     io->signature = sig;
     io->size = hm2_flash_size_of(sig);
+    io->sector = hm2_flash_sector_of(sig);
     if (!io->size)
         return fail(io, -ENODEV, "%s: unknown flash (electronic signature 0x%02X)",
                     io->llio->name, sig);
@@ -237,13 +243,14 @@ int hm2_flash_write(struct hm2_flash_io *io, uint32_t addr, const uint8_t *data,
     int r = check_range(io, addr, n);
     if (r)
         return r;
-    if (addr % HM2_FLASH_SECTOR)
+    uint32_t sec = io->sector ? io->sector : HM2_FLASH_SECTOR;
+    if (addr % sec)
         return fail(io, -EINVAL, "flash write at 0x%06X: not at a sector boundary", addr);
-    uint32_t sectors = (n + HM2_FLASH_SECTOR - 1) / HM2_FLASH_SECTOR;
+    uint32_t sectors = (n + sec - 1) / sec;
     for (uint32_t s = 0; s < sectors; s++) {
-        if ((r = erase_sector(io, addr + s * HM2_FLASH_SECTOR)))
+        if ((r = erase_sector(io, addr + s * sec)))
             return r;
-        progress(io, "Erasing", (s + 1) * HM2_FLASH_SECTOR, sectors * HM2_FLASH_SECTOR);
+        progress(io, "Erasing", (s + 1) * sec, sectors * sec);
     }
     for (uint32_t done = 0; done < n; done += HM2_FLASH_PAGE) {
         uint32_t len = n - done < HM2_FLASH_PAGE ? n - done : HM2_FLASH_PAGE;

@@ -19,6 +19,9 @@ const FlashPart kParts[] = {
      13000000000ull, 1500000},
     {"m25p32", {0x20, 0x20, 0x16}, 0x15, 4u << 20, 0x10000, 256, 640000, 600000000ull,
      23000000000ull, 1500000},
+    // M25P10-A: 1 Mbit, four 32 KiB sectors (small: the whole-flash tests)
+    {"m25p10", {0x20, 0x20, 0x11}, 0x10, 128u << 10, 0x8000, 256, 1400000, 650000000ull,
+     1700000000ull, 5000000},
 };
 
 enum : uint8_t {

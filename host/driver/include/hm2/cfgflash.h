@@ -67,6 +67,7 @@ struct hm2_flash_io {
     /* Filled by hm2_flash_identify(). */
     uint8_t signature; /* RES electronic signature (0x14 = 16 Mbit) */
     uint32_t size;     /* bytes */
+    uint32_t sector;   /* erase unit: 64 KiB; 32 KiB on a 1 Mbit part (M25P10-A) */
     /* statistics */
     uint64_t bytes_shifted;
     char err[256];
@@ -75,6 +76,8 @@ struct hm2_flash_io {
 /* Size in bytes for an electronic signature (0x10 = 1 Mbit ... 0x16 =
  * 64 Mbit); 0 for an unknown one. */
 uint32_t hm2_flash_size_of(uint8_t signature);
+/* Its sector (erase unit) size. */
+uint32_t hm2_flash_sector_of(uint8_t signature);
 /* "16 Mbit" style text of a signature ("unknown" otherwise). */
 const char *hm2_flash_size_text(uint8_t signature);
 
