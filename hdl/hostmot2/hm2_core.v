@@ -26,6 +26,7 @@
 //   ALT_SRC              per pin, 16 bits: index into mod_out (0 = none)
 //   ENC_SRC              per encoder, 4 x 16 bits: pin+1 of A, B, Index,
 //                        IndexMask (0 = tied low)
+//   ENC_PRB_SRC          per encoder, 16 bits: pin+1 of Probe (0 = tied low)
 //
 // mod_out layout (also what hm2gen assumes): bit 0 = constant 0, then
 // step_out (instance i, bit k at 1 + i*SG_TABLE_WIDTH + k), then PWM Out0
@@ -60,7 +61,9 @@ module hm2_core #(
     parameter [8191:0] IDROM         = {8192{1'b0}},
     parameter [16*IOPORTS*PORTWIDTH-1:0] ALT_SRC = {16*IOPORTS*PORTWIDTH{1'b0}},
     parameter [64*(NUM_ENCODER > 0 ? NUM_ENCODER : 1)-1:0] ENC_SRC =
-        {64*(NUM_ENCODER > 0 ? NUM_ENCODER : 1){1'b0}}
+        {64*(NUM_ENCODER > 0 ? NUM_ENCODER : 1){1'b0}},
+    parameter [16*(NUM_ENCODER > 0 ? NUM_ENCODER : 1)-1:0] ENC_PRB_SRC =
+        {16*(NUM_ENCODER > 0 ? NUM_ENCODER : 1){1'b0}}
 ) (
     input  wire                           clk,
     // Only the PWMGen bank uses ClockHigh.
@@ -89,7 +92,7 @@ module hm2_core #(
     wire        bite;
     wire [IOW-1:0] alt_out;
     wire [MODW-1:0] mod_out;
-    wire [NENC-1:0] enc_a, enc_b, enc_idx, enc_idxmask;
+    wire [NENC-1:0] enc_a, enc_b, enc_idx, enc_idxmask, enc_probe;
     wire [NSS-1:0]  ss_rx;
 
     assign mod_out[0] = 1'b0;
@@ -165,7 +168,8 @@ module hm2_core #(
             hm2_encoder_bank #(.BASE(ENC_BASE), .NUM(NUM_ENCODER), .CLOCK_LOW_HZ(CLOCK_LOW_HZ)) u_enc (
                 .clk(clk), .rst(rst), .bus_addr(bus_addr), .bus_wdata(bus_wdata),
                 .bus_we(bus_we), .bus_re(bus_re), .bus_rdata(rd_enc),
-                .enc_a(enc_a), .enc_b(enc_b), .enc_idx(enc_idx), .enc_idxmask(enc_idxmask)
+                .enc_a(enc_a), .enc_b(enc_b), .enc_idx(enc_idx), .enc_idxmask(enc_idxmask),
+                .enc_probe(enc_probe)
             );
         end else begin : g_noenc
             assign rd_enc = 32'd0;
@@ -186,16 +190,16 @@ module hm2_core #(
 
     // Encoder inputs are unused when the firmware has no encoder.
     /* verilator lint_off UNUSEDSIGNAL */
-    wire [NENC-1:0] enc_unused = enc_a & enc_b & enc_idx & enc_idxmask;
+    wire [NENC-1:0] enc_unused = enc_a & enc_b & enc_idx & enc_idxmask & enc_probe;
     /* verilator lint_on UNUSEDSIGNAL */
 
     hm2_pin_router #(
         .IOWIDTH(IOW), .MODW(MODW), .NENC(NENC), .ALT_SRC(ALT_SRC), .ENC_SRC(ENC_SRC),
-        .NSS(NSS), .SS_RX_SRC(SS_RX_SRC)
+        .ENC_PRB_SRC(ENC_PRB_SRC), .NSS(NSS), .SS_RX_SRC(SS_RX_SRC)
     ) u_router (
         .mod_out(mod_out), .io_in(io_in), .alt_out(alt_out),
         .enc_a(enc_a), .enc_b(enc_b), .enc_idx(enc_idx), .enc_idxmask(enc_idxmask),
-        .ss_rx(ss_rx)
+        .enc_probe(enc_probe), .ss_rx(ss_rx)
     );
 
     assign bus_rdata = rd_idrom | rd_wd | rd_io | rd_sg | rd_enc | rd_pwm | rd_xlat | rd_ss;

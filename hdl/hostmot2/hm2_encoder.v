@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 //
-// hm2_encoder: one HostMot2 QCounter with timestamp (spec §9.5, version 2).
+// hm2_encoder: one HostMot2 QCounter with timestamp and probe latch (spec
+// §9.5, versions 2 and 0x83; the bank publishes 0x83 when a firmware routes
+// Probe pins).
 //
-// Pins: A, B, Index and IndexMask arrive raw; each goes through a 2-FF
-// synchronizer.  A, B and Index then pass a digital integrator filter
+// Pins: A, B, Index, IndexMask and Probe arrive raw; each goes through a 2-FF
+// synchronizer.  A, B, Index and Probe then pass a digital integrator filter
 // sampled at the bank's filter rate: a 4-bit counter moves toward the input
 // level by one per sample and the filtered level changes only when the
 // counter reaches its end stop (3 with CCR bit 11 = 0, 15 with bit 11 = 1),
@@ -14,8 +16,14 @@
 // value latched on the clock the count last changed.  Any write clears the
 // count.  CCR: bits 31..16 index-latched count, bits 15..3 control, bits
 // 2..0 filtered Index, B, A.  Bit 15 (sticky quadrature error) is
-// write-1-to-clear as the LinuxCNC driver expects (spec §20); bits 13/12
-// (probe) are plain storage in this probe-less version 2.
+// write-1-to-clear as the LinuxCNC driver expects (spec §20).
+//
+// Probe latch: with CCR bit 13 (LatchOnProbe) set, the filtered Probe input's
+// active edge (rising with bit 12 = 1, falling with bit 12 = 0) copies the
+// count into CCR bits 31..16; in the same clock it wins over an index latch.
+// With JustOnce (bit 6) the probe event clears bit 13 only and an index event
+// clears bits 5 and 4 only, so the host sees which event happened by which
+// bit reads back 0.  A firmware without a Probe pin ties it low.
 `default_nettype none
 
 module hm2_encoder (
@@ -30,10 +38,13 @@ module hm2_encoder (
     input  wire        b_pin,
     input  wire        idx_pin,
     input  wire        mask_pin,
+    input  wire        probe_pin,
     output wire [31:0] count_rd,
     output wire [31:0] ccr_rd
 );
     localparam integer C_ABMASKPOL = 14;
+    localparam integer C_LATCHPRB  = 13;
+    localparam integer C_PROBEPOL  = 12;
     localparam integer C_QFILTER   = 11;
     localparam integer C_UPDOWN    = 10;
     localparam integer C_USEMASK   = 9;
@@ -44,16 +55,20 @@ module hm2_encoder (
     localparam integer C_LATCHIDX  = 4;
     localparam integer C_IDXPOL    = 3;
 
-    // ---- synchronize, then filter A, B, Index
-    wire [3:0] pins_s;
-    sync_ff #(.WIDTH(4), .STAGES(2)) u_sync (
-        .clk(clk), .rst(rst), .d({mask_pin, idx_pin, b_pin, a_pin}), .q(pins_s)
+    // ---- synchronize, then filter A, B, Index, Probe
+    // pins_s: 0 A, 1 B, 2 Index, 3 IndexMask, 4 Probe
+    wire [4:0] pins_s;
+    sync_ff #(.WIDTH(5), .STAGES(2)) u_sync (
+        .clk(clk), .rst(rst), .d({probe_pin, mask_pin, idx_pin, b_pin, a_pin}), .q(pins_s)
     );
+    // filter inputs: j = 0 A, 1 B, 2 Index, 3 Probe
+    wire [3:0] fin = {pins_s[4], pins_s[2:0]};
 
     reg  [14:3] ctrl_q;       // CCR bits 14..3 (bit 15 is qerr_q)
     reg         qerr_q;
-    reg  [11:0] fcnt_q;       // filter integrators [4j+:4]: j=0 A, 1 B, 2 Index
-    reg  [2:0]  filt_q;       // filtered {Index, B, A}
+    reg  [15:0] fcnt_q;       // filter integrators [4j+:4]: j=0 A, 1 B, 2 Index, 3 Probe
+    reg  [3:0]  filt_q;       // filtered {Probe, Index, B, A}
+    reg         probe_prev_q; // filtered Probe one clock earlier
     reg  [1:0]  prev_q;       // filtered A, B one clock earlier
     reg         cond_prev_q;  // conditioned index one clock earlier
     reg  [15:0] count_q;
@@ -76,8 +91,8 @@ module hm2_encoder (
     integer j;
     always @(posedge clk) begin
         if (rst) begin
-            fcnt_q   <= 12'd0;
-            filt_q   <= 3'b000;
+            fcnt_q   <= 16'd0;
+            filt_q   <= 4'b0000;
             warm_q   <= 2'd0;
             primed_q <= 1'b0;
             live_q   <= 1'b0;
@@ -85,17 +100,17 @@ module hm2_encoder (
             if (!warm)
                 warm_q <= warm_q + 2'd1;
             else begin
-                for (j = 0; j < 3; j = j + 1) begin
-                    filt_q[j]        <= pins_s[j];
-                    fcnt_q[4*j +: 4] <= pins_s[j] ? fmax : 4'd0;
+                for (j = 0; j < 4; j = j + 1) begin
+                    filt_q[j]        <= fin[j];
+                    fcnt_q[4*j +: 4] <= fin[j] ? fmax : 4'd0;
                 end
                 primed_q <= 1'b1;
             end
         end else begin
             live_q <= 1'b1;
             if (sample) begin
-                for (j = 0; j < 3; j = j + 1) begin
-                    if (pins_s[j]) begin
+                for (j = 0; j < 4; j = j + 1) begin
+                    if (fin[j]) begin
                         if ({1'b0, fcnt_q[4*j +: 4]} + 5'd1 >= {1'b0, fmax}) begin
                             fcnt_q[4*j +: 4] <= fmax;
                             filt_q[j] <= 1'b1;
@@ -156,11 +171,15 @@ module hm2_encoder (
     wire index_event = live_q && cond && !cond_prev_q;
     wire do_clear = index_event && ctrl_q[C_CLRIDX];
     wire do_latch = index_event && ctrl_q[C_LATCHIDX];
+    wire prb = filt_q[3];
+    wire probe_edge = live_q && (prb != probe_prev_q) && (prb == ctrl_q[C_PROBEPOL]);
+    wire do_probe = probe_edge && ctrl_q[C_LATCHPRB];
 
     always @(posedge clk) begin
         if (rst) begin
             prev_q      <= 2'b00;
             cond_prev_q <= 1'b0;
+            probe_prev_q <= 1'b0;
             count_q     <= 16'd0;
             stamp_q     <= 16'd0;
             latch_q     <= 16'd0;
@@ -169,6 +188,7 @@ module hm2_encoder (
         end else begin
             prev_q      <= filt_q[1:0];
             cond_prev_q <= cond;
+            probe_prev_q <= prb;
 
             if (we_count || do_clear)
                 count_q <= 16'd0;
@@ -179,15 +199,19 @@ module hm2_encoder (
             if (up || down)
                 stamp_q <= ts_count;
 
-            if (do_latch)
+            // the probe latch has priority over the index latch
+            if (do_probe || do_latch)
                 latch_q <= count_q;
 
             if (we_ccr)
                 ctrl_q <= wdata[14:3];
-            else if (index_event && ctrl_q[C_JUSTONCE]) begin
-                ctrl_q[C_CLRIDX]   <= 1'b0;
-                ctrl_q[C_LATCHIDX] <= 1'b0;
-                ctrl_q[13]         <= 1'b0;  // LatchOnProbe is one-shot too
+            else if (ctrl_q[C_JUSTONCE]) begin
+                if (index_event) begin
+                    ctrl_q[C_CLRIDX]   <= 1'b0;
+                    ctrl_q[C_LATCHIDX] <= 1'b0;
+                end
+                if (do_probe)
+                    ctrl_q[C_LATCHPRB] <= 1'b0;
             end
 
             // sticky; a set in the same clock as the clear wins
@@ -199,7 +223,7 @@ module hm2_encoder (
     end
 
     assign count_rd = {stamp_q, count_q};
-    assign ccr_rd = {latch_q, qerr_q, ctrl_q, filt_q};
+    assign ccr_rd = {latch_q, qerr_q, ctrl_q, filt_q[2:0]};
 endmodule
 
 `default_nettype wire

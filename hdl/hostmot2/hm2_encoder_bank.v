@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 //
 // hm2_encoder_bank: NUM QCounters with timestamp behind the internal
-// register bus (spec §9.5, GTag 4, version 2, 5 registers, MPBitmap 0x03).
+// register bus (spec §9.5, GTag 4, version 2 or 0x83 with the probe input,
+// 5 registers, MPBitmap 0x03).
 //
 //   reg 0 Count+Timestamp R (W: clear count)  per instance
 //   reg 1 Latch/Control   R/W                 per instance
@@ -39,7 +40,8 @@ module hm2_encoder_bank #(
     input  wire [NUM-1:0] enc_a,
     input  wire [NUM-1:0] enc_b,
     input  wire [NUM-1:0] enc_idx,
-    input  wire [NUM-1:0] enc_idxmask
+    input  wire [NUM-1:0] enc_idxmask,
+    input  wire [NUM-1:0] enc_probe
 );
     localparam integer NREGS = 5;
     localparam integer FILTER_DIV = (CLOCK_LOW_HZ + 8000000) / 16000000;
@@ -113,6 +115,7 @@ module hm2_encoder_bank #(
                 .b_pin    (enc_b[i]),
                 .idx_pin  (enc_idx[i]),
                 .mask_pin (enc_idxmask[i]),
+                .probe_pin(enc_probe[i]),
                 .count_rd (count_rd[i*32 +: 32]),
                 .ccr_rd   (ccr_rd[i*32 +: 32])
             );

@@ -10,7 +10,8 @@
 //
 // Inputs: pin_ext = {io_in, 1'b0}, so index 0 is a constant 0 and index p+1
 // is I/O pin p.  Encoder i takes A, B, Index and IndexMask from
-// pin_ext[ENC_SRC[16(4i+f)+15:16(4i+f)]], f = 0..3.  The raw pin levels are
+// pin_ext[ENC_SRC[16(4i+f)+15:16(4i+f)]], f = 0..3, and Probe from
+// pin_ext[ENC_PRB_SRC[16i+15:16i]].  The raw pin levels are
 // passed on; the encoder bank synchronizes them.  Smart Serial channel j
 // receives from pin_ext[SS_RX_SRC[16j+15:16j]] (a channel without an RxData
 // pin sees an idle line, 1).
@@ -22,6 +23,7 @@ module hm2_pin_router #(
     parameter integer NENC    = 1,   // encoder slots (>= 1)
     parameter [16*IOWIDTH-1:0] ALT_SRC = {16*IOWIDTH{1'b0}},
     parameter [64*NENC-1:0]    ENC_SRC = {64*NENC{1'b0}},
+    parameter [16*NENC-1:0]    ENC_PRB_SRC = {16*NENC{1'b0}},
     parameter integer NSS     = 1,   // Smart Serial channel slots (>= 1)
     parameter [16*NSS-1:0]     SS_RX_SRC = {16*NSS{1'b0}}
 ) (
@@ -37,6 +39,7 @@ module hm2_pin_router #(
     output wire [NENC-1:0]    enc_b,
     output wire [NENC-1:0]    enc_idx,
     output wire [NENC-1:0]    enc_idxmask,
+    output wire [NENC-1:0]    enc_probe,
     output wire [NSS-1:0]     ss_rx
 );
     wire [IOWIDTH:0] pin_ext = {io_in, 1'b0};
@@ -56,10 +59,12 @@ module hm2_pin_router #(
             localparam integer SB = {16'd0, ENC_SRC[16*(4*i+1) +: 16]};
             localparam integer SI = {16'd0, ENC_SRC[16*(4*i+2) +: 16]};
             localparam integer SM = {16'd0, ENC_SRC[16*(4*i+3) +: 16]};
+            localparam integer SP = {16'd0, ENC_PRB_SRC[16*i +: 16]};
             assign enc_a[i]       = (SA <= IOWIDTH) ? pin_ext[SA] : 1'b0;
             assign enc_b[i]       = (SB <= IOWIDTH) ? pin_ext[SB] : 1'b0;
             assign enc_idx[i]     = (SI <= IOWIDTH) ? pin_ext[SI] : 1'b0;
             assign enc_idxmask[i] = (SM <= IOWIDTH) ? pin_ext[SM] : 1'b0;
+            assign enc_probe[i]   = (SP <= IOWIDTH) ? pin_ext[SP] : 1'b0;
         end
         for (i = 0; i < NSS; i = i + 1) begin : g_ss
             localparam integer SR = {16'd0, SS_RX_SRC[16*i +: 16]};

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 //
-// hm2_stepgen: one HostMot2 StepGen (v2 register semantics, spec §9.4).
+// hm2_stepgen: one HostMot2 StepGen (v2 register semantics, spec §9.4, plus
+// the swap step/dir bit of version 0x42: Mode bit 2 exchanges output pins 0
+// and 1 in every output mode).
 //
 // The bank (hm2_stepgen_bank) decodes the bus and hands this core one write
 // strobe per register plus the shared basic-rate tick of the master DDS.
@@ -60,6 +62,7 @@ module hm2_stepgen #(
     reg [31:0]        rate_q;
     reg [47:0]        acc_q;
     reg [1:0]         mode_q;
+    reg               swap_q;      // Mode bit 2: swap Step and Dir pins
     reg [13:0]        dirsetup_q;
     reg [13:0]        dirhold_q;
     reg [13:0]        pulsewidth_q;
@@ -105,6 +108,7 @@ module hm2_stepgen #(
         if (rst) begin
             rate_q       <= 32'd0;
             mode_q       <= MODE_STEPDIR;
+            swap_q       <= 1'b0;
             dirsetup_q   <= 14'd0;
             dirhold_q    <= 14'd0;
             pulsewidth_q <= 14'd0;
@@ -114,6 +118,7 @@ module hm2_stepgen #(
         end else begin
             if (we_rate)       rate_q       <= wdata;
             if (we_mode)       mode_q       <= wdata[1:0];
+            if (we_mode)       swap_q       <= wdata[2];
             if (we_dirsetup)   dirsetup_q   <= wdata[13:0];
             if (we_dirhold)    dirhold_q    <= wdata[13:0];
             if (we_pulsewidth) pulsewidth_q <= wdata[13:0];
@@ -195,6 +200,8 @@ module hm2_stepgen #(
             end
             default: out_d = table_q[ptr_q*TW +: TW];
         endcase
+        if (swap_q)
+            out_d[1:0] = {out_d[0], out_d[1]};
     end
 
     always @(posedge clk) begin

@@ -33,7 +33,9 @@ module hm2_top_epp #(
     parameter [8191:0] IDROM         = {8192{1'b0}},
     parameter [16*IOPORTS*PORTWIDTH-1:0] ALT_SRC = {16*IOPORTS*PORTWIDTH{1'b0}},
     parameter [64*(NUM_ENCODER > 0 ? NUM_ENCODER : 1)-1:0] ENC_SRC =
-        {64*(NUM_ENCODER > 0 ? NUM_ENCODER : 1){1'b0}}
+        {64*(NUM_ENCODER > 0 ? NUM_ENCODER : 1){1'b0}},
+    parameter [16*(NUM_ENCODER > 0 ? NUM_ENCODER : 1)-1:0] ENC_PRB_SRC =
+        {16*(NUM_ENCODER > 0 ? NUM_ENCODER : 1){1'b0}}
 ) (
     input  wire                           clk_low,
     input  wire                           clk_high,
@@ -72,7 +74,8 @@ module hm2_top_epp #(
         .ENC_BASE(ENC_BASE), .PWM_BASE(PWM_BASE), .NUM_XLAT(NUM_XLAT), .XLAT_BASE(XLAT_BASE),
         .NUM_SSERIAL(NUM_SSERIAL), .SS_NCHAN(SS_NCHAN), .SS_DIV(SS_DIV), .SS_BASE(SS_BASE),
         .SS_RX_SRC(SS_RX_SRC),
-        .IDROM(IDROM), .ALT_SRC(ALT_SRC), .ENC_SRC(ENC_SRC)
+        .IDROM(IDROM), .ALT_SRC(ALT_SRC), .ENC_SRC(ENC_SRC),
+        .ENC_PRB_SRC(ENC_PRB_SRC)
     ) u_core (
         .clk(clk_low), .clk_high(clk_high), .rst(rst),
         .bus_addr(bus_addr), .bus_wdata(bus_wdata), .bus_we(bus_we), .bus_re(bus_re),

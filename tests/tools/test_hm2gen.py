@@ -375,7 +375,44 @@ BAD = [
     ('board = "5i25"', 'board = "5i25"\ncolour = "red"', "unknown key(s) in firmware: colour"),
     ('name = "T"', 'name = "T x"', "may contain only letters"),
     ('name = "T"', 'name = "T', "not valid TOML"),
+    (
+        'type = "StepGen"\ninstances = 1',
+        'type = "StepGen"\ninstances = 1\nversion = 0xC2',
+        "StepGen: version 194 not implemented (known: 0x02, 0x42)",
+    ),
+    (
+        'type = "Encoder"\ninstances = 1',
+        'type = "Encoder"\ninstances = 1\nversion = true',
+        "Encoder: version True not implemented",
+    ),
+    (
+        '"GPIO", "GPIO", "GPIO", "GPIO"',
+        '"Encoder 0 Probe", "GPIO", "GPIO", "GPIO"',
+        "need the probe",
+    ),
 ]
+
+
+def test_newer_versions(tmp_path: Path) -> None:
+    """version = 0x83 / 0x42 go into the module descriptors; the Probe pin
+    (SecPin 0x05) is routed through its own table."""
+    text = GOOD.replace(
+        '"GPIO", "GPIO", "GPIO", "GPIO"', '"Encoder 0 Probe", "GPIO", "GPIO", "GPIO"', 1
+    )
+    text = text.replace(
+        'type = "Encoder"\ninstances = 1', 'type = "Encoder"\ninstances = 1\nversion = 0x83'
+    )
+    text = text.replace(
+        'type = "StepGen"\ninstances = 1', 'type = "StepGen"\ninstances = 1\nversion = 0x42'
+    )
+    fw = _load(tmp_path, text)
+    words = {m.mtype.name: m.md_words()[0] for m in fw.md_table}
+    assert (words["Encoder"] >> 8) & 0xFF == 0x83
+    assert (words["StepGen"] >> 8) & 0xFF == 0x42
+    assert fw.encoder_src() == [[3, 4, 5, 0]]
+    assert fw.encoder_probe_src() == [6]
+    probe = [p for p in fw.pins if p.signal == "Probe"]
+    assert len(probe) == 1 and probe[0].pd_word & 0xFFFF == 0x0405  # QCount, Probe
 
 
 @pytest.mark.parametrize("old,new,msg", BAD, ids=[b[2] for b in BAD])

@@ -421,7 +421,7 @@ def test_list(sockdir: Path) -> None:
         [str(vboard.vboard_binary()), "--list"], capture_output=True, text=True, timeout=30
     )
     assert r.returncode == 0
-    assert "5i20 (2s200pq208): SV12 SVST8_4" in r.stdout
+    assert "5i20 (2s200pq208): SV12 SV2ST2_PRB SVST8_4" in r.stdout
     assert "5i25 (6slx9tqg144): 7I76x2" in r.stdout
 
 

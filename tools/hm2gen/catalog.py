@@ -31,6 +31,10 @@ class ModuleType:
     max_instances: int = 64
     # Printed in the .PIN file like Mesa's tools print it.
     pin_name: str = ""
+    # Other MD versions a firmware may publish with a 'version' key (the
+    # newer register sets the module implements), e.g. the probe-capable
+    # encoder 0x83 and the StepGen with swap step/dir 0x42.
+    alt_versions: tuple[int, ...] = ()
 
     def signal_name(self, code: int) -> str:
         for k, v in self.signals.items():
@@ -66,8 +70,9 @@ MODULES: dict[str, ModuleType] = {
             5,
             0x00,
             0x03,
-            signals={"A": 0x01, "B": 0x02, "Index": 0x03, "IndexMask": 0x04},
+            signals={"A": 0x01, "B": 0x02, "Index": 0x03, "IndexMask": 0x04, "Probe": 0x05},
             pin_name="QCount",
+            alt_versions=(0x83,),
         ),
         ModuleType(
             "StepGen",
@@ -84,6 +89,7 @@ MODULES: dict[str, ModuleType] = {
                 **{f"Table{k}": OUT | (k + 1) for k in range(2, 8)},
             },
             pin_name="StepGen",
+            alt_versions=(0x42,),
         ),
         ModuleType(
             "PWMGen",

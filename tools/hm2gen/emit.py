@@ -45,6 +45,7 @@ def file_names(fw: Firmware) -> dict[str, str]:
 def verilog_include(fw: Firmware) -> str:
     b = fw.board
     enc = [v for inst in fw.encoder_src() for v in inst]
+    prb = fw.encoder_probe_src()
     ssrx = fw.sserial_rx_src()
     mods = {m: fw.module(m) for m in MODULES}
 
@@ -87,6 +88,9 @@ def verilog_include(fw: Firmware) -> str:
         "// Per encoder: I/O pin + 1 of A, B, Index, IndexMask (0 = tied low).",
         f"localparam [{16 * max(len(enc), 4) - 1}:0] HM2_ENC_SRC = "
         f"{_hexvec(enc or [0, 0, 0, 0], 16)};",
+        "// Per encoder: I/O pin + 1 of Probe (0 = tied low).",
+        f"localparam [{16 * max(len(prb), 1) - 1}:0] HM2_ENC_PRB_SRC = "
+        f"{_hexvec(prb or [0], 16)};",
     ]
     return "\n".join(lines) + "\n"
 
@@ -116,6 +120,7 @@ _PARAMS = (
     "IDROM",
     "ALT_SRC",
     "ENC_SRC",
+    "ENC_PRB_SRC",
 )
 
 
@@ -218,7 +223,7 @@ def pin_file(fw: Firmware) -> str:
         mt = m.mtype
         clk = "high" if mt.clock_tag == CLOCK_HIGH else "low"
         out.append(
-            f"  {i:>2}  {mt.name:<15} {mt.gtag:>4} {mt.version:>3} {clk:<5} {m.instances:>4}  "
+            f"  {i:>2}  {mt.name:<15} {mt.gtag:>4} {m.md_version:>3} {clk:<5} {m.instances:>4}  "
             f"0x{mt.base:04X} {mt.registers:>4}  {m.register_stride:>6} {m.instance_stride:>7}  "
             f"0x{mt.mp_bitmap:08X}"
         )
@@ -307,7 +312,7 @@ def json_doc(fw: Firmware) -> dict[str, Any]:
                 "index": i,
                 "name": m.mtype.name,
                 "gtag": m.mtype.gtag,
-                "version": m.mtype.version,
+                "version": m.md_version,
                 "clock_tag": m.mtype.clock_tag,
                 "clock_hz": b.clock_high if m.mtype.clock_tag == CLOCK_HIGH else b.clock_low,
                 "instances": m.instances,

@@ -194,14 +194,19 @@ class ModuleUse:
 
     mtype: ModuleType
     instances: int
+    version: int = -1  # MD version; -1 = the catalog's
 
     @property
     def implemented(self) -> bool:
         return self.mtype.implemented
 
+    @property
+    def md_version(self) -> int:
+        return self.mtype.version if self.version < 0 else self.version
+
     def md_words(self) -> tuple[int, int, int]:
         m = self.mtype
-        w0 = (self.instances << 24) | (m.clock_tag << 16) | (m.version << 8) | m.gtag
+        w0 = (self.instances << 24) | (m.clock_tag << 16) | (self.md_version << 8) | m.gtag
         w1 = (m.strides << 24) | (m.registers << 16) | m.base
         return w0, w1, m.mp_bitmap
 
@@ -373,13 +378,23 @@ class Firmware:
         n = self.count("Encoder")
         src = [[0, 0, 0, 0] for _ in range(n)]
         for p in self.pins:
-            if p.module == "Encoder" and p.unit < n:
+            if p.module == "Encoder" and p.unit < n and p.signal != "Probe":
                 src[p.unit][(p.sec_pin & 0x7F) - 1] = p.io + 1
+        return src
+
+    def encoder_probe_src(self) -> list[int]:
+        """Per encoder instance: pin-input index (I/O pin + 1, 0 = tied 0)
+        of Probe."""
+        n = self.count("Encoder")
+        src = [0] * n
+        for p in self.pins:
+            if p.module == "Encoder" and p.unit < n and p.signal == "Probe":
+                src[p.unit] = p.io + 1
         return src
 
 
 _FW_KEYS = {"name", "board", "idrom_type", "modules", "ports", "notes"}
-_MOD_KEYS = {"type", "instances"}
+_MOD_KEYS = {"type", "instances", "version"}
 _PIN_RE = re.compile(r"^\s*(\w+)\s+(\d+|all)\s+(\w+)\s*$")
 
 
@@ -454,7 +469,12 @@ def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
             raise _err(src, f"{tname}: instances {inst!r} out of range 1..{mt.max_instances}")
         if tname == "LED" and board.leds == 0:
             raise _err(src, f"LED module on board {board.name}, which has no LEDs")
-        modules.append(ModuleUse(mt, inst))
+        version = rm.get("version", mt.version)
+        allowed = (mt.version, *mt.alt_versions)
+        if isinstance(version, bool) or version not in allowed:
+            known = ", ".join(f"0x{v:02X}" for v in allowed)
+            raise _err(src, f"{tname}: version {version!r} not implemented (known: {known})")
+        modules.append(ModuleUse(mt, inst, version))
     for required in ("Watchdog", "IOPort"):
         if required not in seen:
             raise _err(src, f"module table has no {required} (the driver requires one)")
@@ -469,6 +489,7 @@ def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
             f"has room for {md_slots}",
         )
     counts = {m.mtype.name: m.instances for m in modules}
+    versions = {m.mtype.name: m.md_version for m in modules}
 
     # ---- pins
     ports = _get(d, "ports", list, src)
@@ -519,6 +540,12 @@ def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
                 )
             if unit == GLOBAL_UNIT and MODULES[mod].implemented:
                 raise _err(src, f"I/O pin {io}: shared ('all') pins are not supported for {mod}")
+            if mod == "Encoder" and sig == "Probe" and versions[mod] != 0x83:
+                raise _err(
+                    src,
+                    f"I/O pin {io}: Encoder Probe pins need the probe-capable "
+                    "encoder (version = 0x83 in its module entry)",
+                )
             key = (mod, unit, sig)
             if key in used:
                 raise _err(

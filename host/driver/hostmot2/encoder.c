@@ -43,6 +43,7 @@ struct enc_instance {
     uint32_t written_control;
     bool control_written;
     bool prev_qe_enable;
+    bool qe_armed; /* the clear for the current quad-error-enable was written */
 };
 
 struct hm2_encoder_state {
@@ -222,6 +223,8 @@ static void write_controls(hostmot2_t *hm2, bool force)
             continue;
         e->written_control = c;
         e->control_written = true;
+        if (c & CCR_QUAD_ERROR)
+            e->qe_armed = true;
         e->track.latch_pending = (c & CCR_LATCH_INDEX) != 0;
         e->track.probe_pending = (c & CCR_LATCH_PROBE) != 0;
     }
@@ -267,6 +270,9 @@ static void encoder_process_read(hostmot2_t *hm2, long period)
         if (hm2_encoder_track_update(&e->track, &smp, h->scale, tick, h->vel_timeout,
                                      &probe_event))
             *h->index_enable = 0;
+        /* hostmot2(9): probe-enable is reset to 0 when the latch happened */
+        if (probe_event && h->probe_enable)
+            *h->probe_enable = 0;
         if (*h->reset)
             e->track.zero_offset = e->track.rawcounts;
         *h->rawcounts = e->track.rawcounts;
@@ -280,7 +286,11 @@ static void encoder_process_read(hostmot2_t *hm2, long period)
         *h->input_a = smp.ccr & 1u;
         *h->input_b = (smp.ccr >> 1) & 1u;
         *h->input_index = (smp.ccr >> 2) & 1u;
-        bool qe = (smp.ccr & CCR_QUAD_ERROR) && *h->quad_error_enable;
+        /* an error from before quad-error-enable rose is stale: it is
+         * cleared by the write that follows, so it is not reported */
+        if (!*h->quad_error_enable)
+            e->qe_armed = false;
+        bool qe = (smp.ccr & CCR_QUAD_ERROR) && *h->quad_error_enable && e->qe_armed;
         if (qe && !*h->quad_error)
             hm2_msg(hm2, HM2_ERR, "Encoder %d: quadrature count error", i);
         *h->quad_error = qe;

@@ -6,9 +6,14 @@ One :meth:`EncoderBankModel.clock` call per ClockLow rising edge, given the
 pin levels the edge samples and the register writes it takes.  A register
 read sampled at edge k returns the state from before edge k.
 
-Pin path: 2-FF synchronizer, then (A, B, Index) an integrator filter sampled
-at ClockLow/(QFilterRate+2): it moves one step toward the input per sample
-and flips the filtered level at its end stops (3 or 15, CCR bit 11)."""
+Pin path: 2-FF synchronizer, then (A, B, Index, Probe) an integrator filter
+sampled at ClockLow/(QFilterRate+2): it moves one step toward the input per
+sample and flips the filtered level at its end stops (3 or 15, CCR bit 11).
+
+Probe latch (version 0x83): with LatchOnProbe (bit 13), the filtered probe's
+active edge (ProbePolarity bit 12: 1 rising, 0 falling) latches the count;
+it wins over an index latch in the same clock.  JustOnce clears bit 13 on a
+probe event and bits 5/4 on an index event."""
 
 from __future__ import annotations
 
@@ -25,12 +30,15 @@ def bit(v: int, n: int) -> int:
 
 @dataclass
 class EncoderModel:
-    s1: list[int] = field(default_factory=lambda: [0, 0, 0, 0])  # a, b, idx, mask
-    s2: list[int] = field(default_factory=lambda: [0, 0, 0, 0])
-    fcnt: list[int] = field(default_factory=lambda: [0, 0, 0])
-    filt: list[int] = field(default_factory=lambda: [0, 0, 0])
+    # synchronizer stages: a, b, idx, mask, probe
+    s1: list[int] = field(default_factory=lambda: [0, 0, 0, 0, 0])
+    s2: list[int] = field(default_factory=lambda: [0, 0, 0, 0, 0])
+    # filters: a, b, idx, probe
+    fcnt: list[int] = field(default_factory=lambda: [0, 0, 0, 0])
+    filt: list[int] = field(default_factory=lambda: [0, 0, 0, 0])
     prev: list[int] = field(default_factory=lambda: [0, 0])
     cond_prev: int = 0
+    probe_prev: int = 0
     count: int = 0
     stamp: int = 0
     latch: int = 0
@@ -44,10 +52,11 @@ class EncoderModel:
     # bookkeeping for tests
     qerr_events: int = 0
     index_events: int = 0
+    probe_events: int = 0
 
     def clock(
         self,
-        pins: tuple[int, int, int, int],
+        pins: tuple[int, ...],
         sample: bool,
         tscount: int,
         we_count: bool,
@@ -56,7 +65,7 @@ class EncoderModel:
         ctrl = self.ctrl
         fmax = 15 if bit(ctrl, CCR_FILTER) else 3
         was_primed = self.primed
-        a, b, idx = self.filt
+        a, b, idx, prb = self.filt
         pa, pb = self.prev
         up = down = qerr_set = False
         if not self.live:
@@ -79,6 +88,9 @@ class EncoderModel:
         ab_ok = not bit(ctrl, CCR_ABGATE) or (a == pol and b == pol)
         cond = int(idx == bit(ctrl, CCR_IDXPOL) and mask_ok and ab_ok)
         event = bool(self.live and cond and not self.cond_prev)
+        probe_edge = self.live and prb != self.probe_prev and prb == bit(ctrl, CCR_PROBEPOL)
+        probe_latch = bool(probe_edge and bit(ctrl, CCR_PROBE))
+        fin = [self.s2[0], self.s2[1], self.s2[2], self.s2[4]]
 
         # filters (use the synchronized levels from before this edge)
         new_fcnt, new_filt = list(self.fcnt), list(self.filt)
@@ -88,13 +100,13 @@ class EncoderModel:
             if self.warm < 3:
                 self.warm += 1
             else:
-                new_filt = [self.s2[j] for j in range(3)]
-                new_fcnt = [fmax if self.s2[j] else 0 for j in range(3)]
+                new_filt = list(fin)
+                new_fcnt = [fmax if fin[j] else 0 for j in range(4)]
                 self.primed = True
         elif sample:
-            for j in range(3):
+            for j in range(4):
                 c = self.fcnt[j]
-                if self.s2[j]:
+                if fin[j]:
                     c = min(c + 1, fmax) if c + 1 < fmax else fmax
                     if c == fmax:
                         new_filt[j] = 1
@@ -116,12 +128,15 @@ class EncoderModel:
             self.count = (self.count - 1) & 0xFFFF
         if up or down:
             self.stamp = tscount
-        if event and bit(ctrl, CCR_LATCHIDX):
+        if probe_latch or (event and bit(ctrl, CCR_LATCHIDX)):
             self.latch = self.count_before
         if ccr_write is not None:
             self.ctrl = ccr_write & 0x7FF8
-        elif event and bit(ctrl, CCR_JUSTONCE):
-            self.ctrl &= ~((1 << CCR_CLRIDX) | (1 << CCR_LATCHIDX) | (1 << CCR_PROBE))
+        elif bit(ctrl, CCR_JUSTONCE):
+            if event:
+                self.ctrl &= ~((1 << CCR_CLRIDX) | (1 << CCR_LATCHIDX))
+            if probe_latch:
+                self.ctrl &= ~(1 << CCR_PROBE)
         if qerr_set:
             self.qerr = 1
             self.qerr_events += 1
@@ -129,11 +144,14 @@ class EncoderModel:
             self.qerr = 0
         if event:
             self.index_events += 1
+        if probe_latch:
+            self.probe_events += 1
 
         if was_primed:
             self.live = True  # decoding starts the clock after priming
         self.prev = [a, b]
         self.cond_prev = cond
+        self.probe_prev = prb
         self.fcnt, self.filt = new_fcnt, new_filt
         self.s2 = list(self.s1)
         self.s1 = list(pins)
@@ -180,9 +198,7 @@ class EncoderBankModel:
             return 0
         return {2: self.tsdiv, 3: self.tscount, 4: self.qfilter}.get(reg, 0)
 
-    def clock(
-        self, pins: list[tuple[int, int, int, int]], writes: list[tuple[int, int, int]] = ()
-    ) -> None:
+    def clock(self, pins: list[tuple[int, ...]], writes: list[tuple[int, int, int]] = ()) -> None:
         we_count = [False] * self.num
         ccr: list[int | None] = [None] * self.num
         new_tsdiv, new_qfilter = self.tsdiv, self.qfilter

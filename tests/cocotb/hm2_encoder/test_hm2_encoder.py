@@ -36,6 +36,8 @@ from encoder_model import (
     CCR_JUSTONCE,
     CCR_LATCHIDX,
     CCR_MASKPOL,
+    CCR_PROBE,
+    CCR_PROBEPOL,
     CCR_QERR,
     CCR_UPDOWN,
     CCR_USEMASK,
@@ -72,7 +74,7 @@ class Harness:
     async def start(self, idle: int = 0) -> None:
         """Reset with every input pin at ``idle`` (1 = pulled-up, unconnected)."""
         d = self.dut
-        for sig in (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask):
+        for sig in (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask, d.enc_probe):
             sig.value = ((1 << self.num) - 1) if idle else 0
         cocotb.start_soon(Clock(d.clk, PERIOD, unit="ns").start())
         d.rst.value = 1
@@ -82,9 +84,10 @@ class Harness:
         d.rst.value = 0
         await RisingEdge(d.clk)
         self.t_ref = get_sim_time("ns")
-        self.logs = [VectorLog(s).start() for s in (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask)]
+        pins = (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask, d.enc_probe)
+        self.logs = [VectorLog(s).start() for s in pins]
         init = ((1 << self.num) - 1) if idle else 0
-        self.vecs = [_Vec(x, init) for x in (d.enc_a, d.enc_b, d.enc_idx, d.enc_idxmask)]
+        self.vecs = [_Vec(x, init) for x in pins]
         # a QuadSource drives its pins to state 00 when made: none for idle-high
         self.src = [] if idle else [_BitSource(self.vecs, i) for i in range(self.num)]
         # pin changes happen off the clock edges: start a little after one
@@ -121,7 +124,7 @@ class Harness:
         for c, reg, inst, v in self.reads:
             reads.setdefault(c, []).append((reg, inst, v))
         # walk the pin logs alongside the clock edges
-        ptr = [0] * 4
+        ptr = [0] * len(self.logs)
         level = [lg.v0 for lg in self.logs]
         for c in range(end + 1):
             t_edge = self.t_ref + c * PERIOD
@@ -131,7 +134,7 @@ class Harness:
                     assert abs(t_chg - t_edge) > 1e-4, f"pin change exactly on clock edge {c}"
                     level[n] = v
                     ptr[n] += 1
-            pins = [tuple((level[n] >> i) & 1 for n in range(4)) for i in range(self.num)]
+            pins = [tuple((level[n] >> i) & 1 for n in range(5)) for i in range(self.num)]
             for reg, inst, v in reads.get(c, []):
                 want = model.read(reg, inst)
                 assert v == want, (
@@ -176,7 +179,8 @@ class _BitSource:
     """A QuadSource on bit i of the bank's packed pin vectors."""
 
     def __init__(self, vecs: list[_Vec], i: int) -> None:
-        self.quad = QuadSource(*(_Bit(v, i) for v in vecs), seed=11 + i)
+        self.quad = QuadSource(*(_Bit(v, i) for v in vecs[:4]), seed=11 + i)
+        self.probe = _Bit(vecs[4], i)
 
 
 def qfilter_reset(dut: Any) -> int:
@@ -427,6 +431,66 @@ async def index_features(dut: Any) -> None:
     assert s16(ccr >> 16) == pos_at and not ccr & (1 << CCR_LATCHIDX)
     assert ccr & 0x7 == 0b011, f"realtime A/B/Index read-back {ccr & 7:#b}"
     h.replay(qfilter_reset(dut))
+
+
+@cocotb.test()
+async def probe_latch(dut: Any) -> None:
+    """Version 0x83 probe input: LatchOnProbe latches the count on the
+    filtered probe's active edge (bit 12: 1 rising, 0 falling), JustOnce
+    clears bit 13 only; an index event leaves a pending probe latch alone and
+    a probe event leaves a pending index latch alone; a probe glitch shorter
+    than the filter latches nothing."""
+    h = Harness(dut)
+    await h.start()
+    await h.write(R_QFILTER, 0, 0xFFF)
+    q, probe = h.src[1].quad, h.src[1].probe
+    once = 1 << CCR_JUSTONCE
+    await q.move(7, 200)
+    # 1. rising edge, just once
+    await h.write(R_CCR, 1, (1 << CCR_PROBE) | (1 << CCR_PROBEPOL) | once)
+    probe.value = 1
+    await h.wait(20)
+    ccr = await h.read(R_CCR, 1)
+    assert ccr >> 16 == 7 and not ccr & (1 << CCR_PROBE), f"{ccr:#x}"
+    assert ccr & (1 << CCR_PROBEPOL), "JustOnce cleared more than bit 13"
+    await q.move(3, 200)
+    probe.value = 0
+    await h.wait(20)
+    probe.value = 1  # second edge: latch already used up
+    await h.wait(20)
+    assert await h.read(R_CCR, 1) >> 16 == 7
+    # 2. falling edge (bit 12 = 0); the rising edge before it does nothing
+    await h.write(R_CCR, 1, (1 << CCR_PROBE) | once)
+    probe.value = 0
+    await h.wait(20)
+    probe.value = 1
+    await h.wait(20)
+    ccr = await h.read(R_CCR, 1)
+    assert ccr >> 16 == 10 and not ccr & (1 << CCR_PROBE), f"{ccr:#x}"
+    # 3. probe filter: 15 samples with bit 11, a 10-clock low pulse is noise
+    await h.write(R_CCR, 1, (1 << CCR_PROBE) | (1 << CCR_FILTER) | once)
+    await q.move(-2, 800)
+    probe.value = 0
+    await Timer(10 * PERIOD, unit="ns")
+    probe.value = 1
+    await h.wait(40)
+    ccr = await h.read(R_CCR, 1)
+    assert ccr >> 16 == 10 and ccr & (1 << CCR_PROBE), f"glitch latched: {ccr:#x}"
+    # 4. index and probe latches pending together: each event clears its own
+    await h.write(R_CCR, 1, (1 << CCR_PROBE) | (1 << CCR_LATCHIDX) | (1 << CCR_IDXPOL) | once)
+    await q.index_pulse(300)
+    await h.wait(10)
+    ccr = await h.read(R_CCR, 1)
+    assert ccr >> 16 == 8 and not ccr & (1 << CCR_LATCHIDX) and ccr & (1 << CCR_PROBE)
+    await q.move(4, 200)
+    probe.value = 0
+    await h.wait(40)
+    ccr = await h.read(R_CCR, 1)
+    assert ccr >> 16 == 12 and not ccr & (1 << CCR_PROBE), f"{ccr:#x}"
+    # 5. instance 0 never saw a probe latch
+    assert (await h.read(R_CCR, 0)) >> 16 == 0
+    model = h.replay(qfilter_reset(dut))
+    assert model.inst[1].probe_events == 3 and model.inst[0].probe_events == 0
 
 
 @cocotb.test()

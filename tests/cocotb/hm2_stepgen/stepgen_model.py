@@ -39,6 +39,7 @@ class StepgenModel:
     rate: int = 0  # signed
     acc: int = 0  # 48-bit, unsigned representation
     mode: int = 0
+    swap: int = 0  # Mode bit 2 (version 0x42): Step and Dir pins exchanged
     dirsetup: int = 0
     dirhold: int = 0
     pulsewidth: int = 0
@@ -63,6 +64,7 @@ class StepgenModel:
             self.pending_acc = data
         elif reg == 2:
             self.mode = data & 3
+            self.swap = (data >> 2) & 1
         elif reg == 3:
             self.dirsetup = data & 0x3FFF
         elif reg == 4:
@@ -80,6 +82,12 @@ class StepgenModel:
             raise ValueError(f"stepgen has no per-instance register {reg}")
 
     def _format(self) -> int:
+        v = self._format_unswapped()
+        if self.swap:
+            v = (v & ~3) | ((v & 1) << 1) | ((v >> 1) & 1)
+        return v
+
+    def _format_unswapped(self) -> int:
         if self.mode == 0:
             return int(self.pulse) | (self.dirn << 1)
         if self.mode == 1:

@@ -3,7 +3,7 @@
 
     vbprobe.py SOCK probe KEY PIN[,PIN...]   print '%%KEY [json pins]'
     vbprobe.py SOCK reset PIN[,PIN...]       clear edge counters/measurements
-    vbprobe.py SOCK drive PIN low|high|release
+    vbprobe.py SOCK drive PIN[,PIN...] low|high|release
     vbprobe.py SOCK quad A B RATE [INDEX EVERY]
     vbprobe.py SOCK hello KEY                print '%%KEY {hello}'
     vbprobe.py SOCK stall on|off             EPP boards: stop/resume acknowledging
@@ -39,7 +39,8 @@ def main(argv: list[str]) -> int:
             for p in pins(rest[0]):
                 c.probe_reset(p, 1)
         elif cmd == "drive":
-            c.drive(int(rest[0]), MODES[rest[1]])
+            # several pins change in the same board clock
+            c.drive([(p, MODES[rest[1]]) for p in pins(rest[0])])
         elif cmd == "quad":
             a, b, rate = int(rest[0]), int(rest[1]), float(rest[2])
             if len(rest) > 3:
