@@ -14,6 +14,8 @@ from flashhelpers import StartBoard
 from flashhelpers import USER, vboard
 
 CTRL, DATA, ICAP = 0x70, 0x74, 0x78
+BOOTSTS = 0x7C  # the virtual board's own boot status register
+ICAP_COOKIE = 0x1CAB1CAB  # what mesaflash 3.4.6 wants from 0x78 before --reload
 
 
 class Spi:
@@ -117,10 +119,12 @@ def test_block_protect_refuses_erase(sockdir: Path, start_board: StartBoard) -> 
 def test_icap_iprog_reconfigures(sockdir: Path, start_board: StartBoard) -> None:
     b = start_board()
     with b.client() as c:
-        assert c.read(ICAP)[0] == 0x01
+        assert c.read(ICAP)[0] == ICAP_COOKIE
+        assert c.read(BOOTSTS)[0] == 0x01
         for w in (0xFFFF, 0xAA99, 0x5566, 0x3261, 0x0000, 0x3281, 0x0B00, 0x30A1, 0x000E):
             c.write(ICAP, w)
-        assert c.read(ICAP)[0] == 0x05  # valid, by IPROG
+        assert c.read(BOOTSTS)[0] == 0x05  # valid, by IPROG
+        assert c.read(ICAP)[0] == ICAP_COOKIE
         assert c.hello().firmware == "7I76x2"
         # a cookie read works: the firmware runs again
         assert c.read(0x100)[0] == 0x55AACAFE

@@ -243,8 +243,9 @@ int hm2flash_reopen(struct hm2flash_board *bd)
     if (bd->is_eth)
         return reopen_eth(bd);
     if (bd->is_pci) {
-        /* the window stays mapped; the FPGA takes a moment to reconfigure */
-        bd->io.delay_ns(bd, 200000000ull);
+        /* the window stays mapped; the FPGA takes a moment to reconfigure
+         * (mesaflash waits 2 s) */
+        bd->io.delay_ns(bd, 2000000000ull);
         return 0;
     }
     struct hm2_flash_io keep = bd->io;

@@ -338,6 +338,8 @@ out:
 static void print_bootsts(struct hm2flash_board *bd)
 {
     uint32_t s = 0;
+    if (bd->is_pci) /* Mesa's firmware has no boot status register */
+        return;
     if (hm2_flash_boot_status(&bd->io, &s))
         return;
     printf("  Boot status: 0x%02X%s%s%s%s%s\n", s, s & HM2_BOOTSTS_VALID ? " valid" : "",

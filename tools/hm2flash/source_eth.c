@@ -29,7 +29,7 @@
 #define FW_VERSION 0x12u     /* space 7: firmware version (> 14: reload port) */
 #define READ_WORDS 64u       /* per read command: 256 bytes, as mesaflash reads */
 #define READ_CMDS 4u         /* read commands per datagram */
-#define TIMEOUT_US 200000
+#define TIMEOUT_US 500000 /* a loaded host may take a while to answer */
 #define ERASE_TIMEOUT_US 5000000 /* a sector erase takes up to 3 s on an M25P16 */
 #define TRIES 5
 

@@ -287,9 +287,7 @@ int hm2_flash_verify(struct hm2_flash_io *io, uint32_t addr, const uint8_t *data
 /* Spartan-6 configuration packets, byte for byte what mesaflash writes
  * (recorded in tests/data/eth/mesaflash/7i92-bootblock.hex): padding, sync
  * word, GENERAL1/2 = the MultiBoot (user) address 0x100000 with read opcode
- * 0x0B, GENERAL3/4 = the fallback address 0x010000, CMD = IPROG, NOOPs.  (hm2_flash_reload sends the same packets
- * without the trailing NOOPs: after IPROG the firmware that would take them
- * is gone.) */
+ * 0x0B, GENERAL3/4 = the fallback address 0x010000, CMD = IPROG, NOOPs. */
 static const uint8_t boot_block[] = {
     0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xAA, 0x99, 0x55,
     0x66, 0x31, 0xE1, 0xFF, 0xFF, 0x32, 0x61, 0x00, 0x00, 0x32, 0x81, 0x0B, 0x10,
@@ -316,9 +314,9 @@ int hm2_flash_boot_block_ok(struct hm2_flash_io *io, int *ok)
 size_t hm2_flash_iprog_words(int fallback, uint16_t *out, size_t max)
 {
     uint32_t a = fallback ? HM2_FLASH_FALLBACK_ADDR : HM2_FLASH_BOOT_ADDR;
-    const uint16_t seq[] = {0xFFFF, 0xAA99, 0x5566, 0x3261, (uint16_t)a, 0x3281,
-                            (uint16_t)(0x0B00u | (a >> 16)), 0x32A1, 0x0000, 0x32C1, 0x0B00,
-                            0x30A1, 0x000E};
+    const uint16_t seq[] = {0xFFFF, 0xFFFF, 0xAA99, 0x5566, 0x3261, (uint16_t)a, 0x3281,
+                            (uint16_t)(0x0B00u | (a >> 16)), 0x30A1, 0x000E, 0x2000, 0x2000,
+                            0x2000, 0x2000};
     size_t n = sizeof(seq) / sizeof(seq[0]);
     if (n > max)
         return 0;
@@ -330,12 +328,21 @@ int hm2_flash_reload(struct hm2_flash_io *io, int fallback)
 {
     if (io->ops)
         return io->ops->reload(io, fallback);
+    uint32_t cookie = 0;
+    int r = io->llio->read(io->llio, HM2_FLASH_REG_ICAP, &cookie, sizeof(cookie));
+    if (r)
+        return fail(io, r, "%s: read of the ICAP register failed (%s)", io->llio->name,
+                    strerror(-r));
+    if (cookie != HM2_FLASH_ICAP_COOKIE)
+        return fail(io, -ENOTSUP, "%s: Active firmware too old to support --reload (ICAP "
+                                  "register 0x%08X, not 0x%08X): power cycle the board",
+                    io->llio->name, cookie, HM2_FLASH_ICAP_COOKIE);
     uint16_t seq[16];
     size_t n = hm2_flash_iprog_words(fallback, seq, 16);
     for (size_t i = 0; i < n; i++) {
-        int r = reg_write(io, HM2_FLASH_REG_ICAP, seq[i]);
-        if (r)
+        if ((r = reg_write(io, HM2_FLASH_REG_ICAP, seq[i])))
             return r;
+        io->delay_ns(io->delay_ctx, 1000000ull); /* 1 ms between words, as mesaflash */
     }
     return 0;
 }
@@ -344,7 +351,7 @@ int hm2_flash_boot_status(struct hm2_flash_io *io, uint32_t *bootsts)
 {
     if (io->ops)
         return fail(io, -ENOTSUP, "%s: no boot status through this interface", io->llio->name);
-    int r = io->llio->read(io->llio, HM2_FLASH_REG_ICAP, bootsts, sizeof(*bootsts));
+    int r = io->llio->read(io->llio, HM2_FLASH_REG_BOOTSTS, bootsts, sizeof(*bootsts));
     if (r)
         return fail(io, r, "%s: read of the boot status failed (%s)", io->llio->name,
                     strerror(-r));

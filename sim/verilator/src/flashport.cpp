@@ -73,7 +73,8 @@ uint32_t FlashPort::read(uint32_t addr, uint64_t now)
     switch (addr) {
     case kFlashRegCtrl: return (now >= dav_at_ ? 4u : 0u) | (cs_high_ ? 1u : 0u);
     case kFlashRegData: return rx_;
-    case kFlashRegIcap: return bootsts_;
+    case kFlashRegIcap: return kIcapCookie;
+    case kFlashRegBootsts: return bootsts_;
     default: return 0;
     }
 }

@@ -11,9 +11,12 @@
 //              clears DAV; a read returns the byte shifted in
 //  * the ICAP port at 0x0078: writes are 16-bit configuration words (sync
 //    0xAA99 0x5566, type-1 packets to GENERAL1..4 and CMD; CMD = IPROG
-//    reconfigures from the flash); a read returns the boot status (BOOTSTS
-//    bits: 0 valid, 1 fallback used, 2 started by IPROG, 4 ID error
-//    (image for another board), 5 CRC error);
+//    reconfigures from the flash); a read returns 0x1CAB1CAB, the cookie
+//    mesaflash 3.4.6 checks before --reload (spec/hostmot2.md
+//    "Configuration flash");
+//  * 0x007C (the virtual board's own, not Mesa's): a read returns the boot
+//    status (Spartan-6 BOOTSTS bits: 0 valid, 1 fallback used, 2 started by
+//    IPROG, 4 ID error (image for another board), 5 CRC error);
 //  * the FPGA's own configuration from the flash: at power-up and on IPROG
 //    it reads address 0 (or the IPROG address): a boot block (sync word and
 //    packets that set the MultiBoot and fallback addresses, then IPROG) is
@@ -37,6 +40,8 @@ constexpr uint32_t kFlashUserAddr = 0x100000; // mesaflash's user area (16 Mbit)
 constexpr uint32_t kFlashRegCtrl = 0x0070;
 constexpr uint32_t kFlashRegData = 0x0074;
 constexpr uint32_t kFlashRegIcap = 0x0078;
+constexpr uint32_t kFlashRegBootsts = 0x007C; // virtual board only
+constexpr uint32_t kIcapCookie = 0x1CAB1CAB;
 
 enum : uint32_t {
     BOOTSTS_VALID = 1u << 0,

@@ -188,7 +188,7 @@ int LocalBusBoard::config(uint32_t op, const uint8_t *bits, size_t len, vb_confi
 
 bool LocalBusBoard::flash_reg(uint32_t addr) const
 {
-    return port_ && addr >= kFlashRegCtrl && addr <= kFlashRegIcap;
+    return port_ && addr >= kFlashRegCtrl && addr <= kFlashRegBootsts;
 }
 
 // One xfer that touches the flash registers, word by word; each word takes

@@ -22,7 +22,10 @@ extern "C" {
 
 #define HM2_FLASH_REG_CTRL 0x0070u /* w: bit0 /CS; r: bit2 data available */
 #define HM2_FLASH_REG_DATA 0x0074u /* w: shift a byte out; r: byte shifted in */
-#define HM2_FLASH_REG_ICAP 0x0078u /* w: 16-bit ICAP words; r: boot status */
+#define HM2_FLASH_REG_ICAP 0x0078u /* w: 16-bit ICAP words; r: 0x1CAB1CAB */
+#define HM2_FLASH_ICAP_COOKIE 0x1CAB1CABu /* firmware that can --reload */
+/* The boot status: a register of the virtual boards only (vboard(1)). */
+#define HM2_FLASH_REG_BOOTSTS 0x007Cu
 #define HM2_FLASH_DAV 0x04u
 
 #define HM2_FLASH_BOOT_ADDR 0x000000u
@@ -103,11 +106,13 @@ int hm2_flash_boot_block_ok(struct hm2_flash_io *io, int *ok);
 /* Make the FPGA reconfigure from the flash through ICAP (IPROG), from the
  * boot block (fallback = 0) or straight from the fallback image. */
 int hm2_flash_reload(struct hm2_flash_io *io, int fallback);
-/* The Spartan-6 ICAP words of that reload (sync, GENERAL1-4 = the address
- * to load, CMD = IPROG): the count written to out, 0 if max is too small. */
+/* The Spartan-6 ICAP words of that reload, mesaflash 3.4.6's (two dummy
+ * words, sync, GENERAL1/2 = the address to load (0, or the fallback at
+ * 0x10000) with read opcode 0x0B, CMD = IPROG, four NOOPs): the count
+ * written to out, 0 if max is too small. */
 size_t hm2_flash_iprog_words(int fallback, uint16_t *out, size_t max);
-/* The boot status (BOOTSTS bits) the firmware reports (-ENOTSUP through
- * ops). */
+/* The boot status (BOOTSTS bits) a virtual board reports at 0x7C (-ENOTSUP
+ * through ops; not on Mesa's firmware). */
 int hm2_flash_boot_status(struct hm2_flash_io *io, uint32_t *bootsts);
 
 #ifdef __cplusplus
