@@ -94,7 +94,14 @@ def connector(board: str, io: int) -> str:
 
 
 PWM_NAMES = {"Out0": "Out0 (PWM or Up)", "Out1": "Out1 (Dir or Down)", "NotEnable": "Not-Enable"}
-FUNC = {4: "Encoder", 5: "StepGen", 6: "PWMGen"}
+FUNC = {4: "Encoder", 5: "StepGen", 6: "PWMGen", 193: "Smart Serial Interface"}
+# Smart Serial pins as LinuxCNC's hostmot2 names them: TxDataN -> txN,
+# RxDataN -> rxN, TxEnN -> txenN.
+SSERIAL_NAMES = {
+    **{f"TxData{k}": f"tx{k}" for k in range(8)},
+    **{f"RxData{k}": f"rx{k}" for k in range(8)},
+    **{f"TxEn{k}": f"txen{k}" for k in range(8)},
+}
 
 
 def expected_pin_lines(
@@ -109,8 +116,10 @@ def expected_pin_lines(
         io = int(p["io_pin"])
         tag, unit, sp = int(p["sec_tag"]), int(p["sec_unit"]), int(p["sec_pin"])
         head = f"{prefix}    IO Pin {io:03d} ({connector(board, io)}):"
-        used = tag in FUNC and unit < counts.get(tag, 0)
+        used = tag in FUNC and unit < counts.get(tag, 64 if tag == 193 else 0)
         name = p["sec_pin_name"]
+        if tag == 193:
+            name = SSERIAL_NAMES[name]
         if tag == 6:
             name = PWM_NAMES[name]
         if tag == 5 and (sp & 0x7F) > 2:

@@ -88,6 +88,16 @@ static int parse_sserial(const char *tok, struct hm2_config *cfg, char *err, siz
     return 0;
 }
 
+char hm2_sserial_mode(const struct hm2_config *cfg, int port, int chan)
+{
+    if (port < 0 || port >= HM2_MAX_SSERIAL_PORTS || chan < 0 || chan > 7)
+        return 'x';
+    const char *m = cfg->sserial_modes[port];
+    if ((size_t)chan >= strlen(m))
+        return '0';
+    return m[chan] == 'X' ? 'x' : m[chan];
+}
+
 static int parse_token(const char *tok, struct hm2_config *cfg, char *err, size_t errlen)
 {
     if (starts(tok, "firmware=")) {

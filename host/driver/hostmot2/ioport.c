@@ -23,6 +23,7 @@ struct hm2_ioport_state {
     uint32_t cfg[5][HM2_LLIO_MAX_CONNECTORS];   /* wanted (index REG_*) */
     uint32_t wrote[5][HM2_LLIO_MAX_CONNECTORS]; /* last written */
     bool module_outputs;                        /* DDR of module outputs on */
+    int early_gtag; /* this module's outputs are on before that (0: none) */
     struct hm2_gpio_hal *hal;
 };
 
@@ -143,7 +144,7 @@ static void compute_config(hostmot2_t *hm2)
         } else {
             s->cfg[REG_ALT][port] |= bit;
             output = p->direction == HM2_PIN_DIR_OUTPUT;
-            if (output && !s->module_outputs)
+            if (output && !s->module_outputs && p->gtag != s->early_gtag)
                 continue;
         }
         if (!output)
@@ -171,6 +172,16 @@ static void write_config(hostmot2_t *hm2, bool force)
                 s->wrote[reg][port] = s->cfg[reg][port];
         }
     }
+}
+
+int hm2_ioport_early_outputs(hostmot2_t *hm2, int gtag)
+{
+    struct hm2_ioport_state *s = hm2->ioport_s;
+    if (!s)
+        return -ENODEV;
+    s->early_gtag = gtag;
+    write_config(hm2, false);
+    return hm2->needs_reset ? -EIO : 0;
 }
 
 static void ioport_force_write(hostmot2_t *hm2)

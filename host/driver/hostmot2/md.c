@@ -35,6 +35,7 @@ static const struct md_rule rules[] = {
     {HM2_GTAG_STEPGEN, v_stepgen, NV(v_stepgen), 10, 4, 0x1FF, STYLE_STEPGEN},
     {HM2_GTAG_PWMGEN, v_pwm, NV(v_pwm), 5, 4, 0x03, STYLE_PWM},
     {HM2_GTAG_LED, v_zero, NV(v_zero), 1, 4, 0x00, STYLE_GENERIC},
+    {HM2_GTAG_SMARTSERIAL, v_zero, NV(v_zero), 6, 0x40, 0x3C, STYLE_GENERIC},
 };
 #undef NV
 
@@ -56,6 +57,7 @@ static struct hm2_module *module_slot(hostmot2_t *hm2, int gtag)
     case HM2_GTAG_STEPGEN: return &hm2->stepgen;
     case HM2_GTAG_PWMGEN: return &hm2->pwmgen;
     case HM2_GTAG_LED: return &hm2->led;
+    case HM2_GTAG_SMARTSERIAL: return &hm2->sserial;
     default: return NULL;
     }
 }
@@ -130,6 +132,7 @@ static int requested(const hostmot2_t *hm2, int gtag)
     case HM2_GTAG_MUXED_ENCODER: return hm2->config.num_encoders;
     case HM2_GTAG_STEPGEN: return hm2->config.num_stepgens;
     case HM2_GTAG_PWMGEN: return hm2->config.num_pwmgens;
+    case HM2_GTAG_SMARTSERIAL: return hm2->config.num_sserials;
     default: return -1;
     }
 }
@@ -139,6 +142,7 @@ static const char *count_key(int gtag)
     switch (gtag) {
     case HM2_GTAG_STEPGEN: return "num_stepgens";
     case HM2_GTAG_PWMGEN: return "num_pwmgens";
+    case HM2_GTAG_SMARTSERIAL: return "num_sserials";
     default: return "num_encoders";
     }
 }
@@ -216,6 +220,7 @@ static int accept_md(hostmot2_t *hm2, int i)
     case HM2_GTAG_ENCODER:
     case HM2_GTAG_MUXED_ENCODER:
     case HM2_GTAG_STEPGEN:
+    case HM2_GTAG_SMARTSERIAL:
     case HM2_GTAG_PWMGEN: {
         int want = requested(hm2, md->gtag);
         if (want > md->instances) {

@@ -47,6 +47,11 @@ void *hm2_hal_zalloc(hostmot2_t *hm2, size_t size, const char *what);
 /* Report a HAL export failure (r < 0) naming the object; returns r. */
 int hm2_hal_fail(hostmot2_t *hm2, int r, const char *what);
 
+/* Let module `gtag` drive its output pins now, before the first HAL
+ * write() turns every module output on (ioport.c): for protocols that run
+ * at load, like Smart Serial discovery.  0, or -errno. */
+int hm2_ioport_early_outputs(hostmot2_t *hm2, int gtag);
+
 /* ---- TRAM: the register blocks transferred every period (tram.c) ---- */
 int hm2_tram_add_read(hostmot2_t *hm2, uint32_t addr, uint32_t **buf, int words);
 int hm2_tram_add_write(hostmot2_t *hm2, uint32_t addr, uint32_t **buf, int words);

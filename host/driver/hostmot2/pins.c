@@ -15,6 +15,7 @@ static int units_enabled(const hostmot2_t *hm2, int sec_tag)
     case HM2_GTAG_MUXED_ENCODER_SEL: return hm2->muxed_encoder.used > 0 ? 0x7F : 0;
     case HM2_GTAG_STEPGEN: return hm2->stepgen.used;
     case HM2_GTAG_PWMGEN: return hm2->pwmgen.used;
+    case HM2_GTAG_SMARTSERIAL: return hm2->sserial.used;
     default: return 0; /* modules this driver does not run keep their pins GPIO */
     }
 }
@@ -42,6 +43,9 @@ int hm2_allocate_pins(hostmot2_t *hm2)
             continue;
         if (!(p->sec_unit & 0x80) && p->sec_unit >= units)
             continue;
+        if (p->sec_tag == HM2_GTAG_SMARTSERIAL &&
+            hm2_sserial_mode(&hm2->config, p->sec_unit & 0x7F, (p->sec_pin & 0x0F) - 1) == 'x')
+            continue; /* sserial_port_N=..x..: the channel's pins stay GPIO */
         if (p->sec_tag == HM2_GTAG_STEPGEN) {
             int sp = p->sec_pin & 0x7F;
             int width = hm2->config.stepgen_width;
@@ -93,6 +97,8 @@ void hm2_print_modules(const hostmot2_t *hm2)
         hm2_msg(hm2, HM2_PRINT, "PWMGen: %d", hm2->pwmgen.used);
     if (hm2->stepgen.present)
         hm2_msg(hm2, HM2_PRINT, "StepGen: %d", hm2->stepgen.used);
+    if (hm2->sserial.present)
+        hm2_msg(hm2, HM2_PRINT, "Smart Serial ports: %d", hm2->sserial.used);
     hm2_msg(hm2, HM2_PRINT, "Watchdog: %d", hm2->watchdog.used);
     if (hm2->led.present)
         hm2_msg(hm2, HM2_PRINT, "LEDs: %d", hm2->num_leds);

@@ -7,6 +7,7 @@
     vbprobe.py SOCK quad A B RATE [INDEX EVERY]
     vbprobe.py SOCK hello KEY                print '%%KEY {hello}'
     vbprobe.py SOCK stall on|off             EPP boards: stop/resume acknowledging
+    vbprobe.py SOCK sserial KEY CMD...       Smart Serial remotes (VB_SSERIAL): print '%%KEY json'
 
 Every request carries host time 0: the board's clock is not advanced, the
 HAL session (lockstep) owns it.
@@ -49,6 +50,9 @@ def main(argv: list[str]) -> int:
                 c.quad(a, b, rate)
         elif cmd == "stall":
             c.epp_stall(rest[0] == "on")
+        elif cmd == "sserial":
+            reply = c.call(vboard.SSERIAL, " ".join(rest[1:]).encode()).decode()
+            print(f"%%{rest[0]} {reply}", flush=True)
         elif cmd == "hello":
             print(f"%%{rest[0]} {json.dumps(dataclasses.asdict(c.hello()))}", flush=True)
         else:

@@ -242,11 +242,18 @@ static void test_ignored_mds(void)
     CHECK(tlog_find(&lg, "hm2/hm2_5i20.0: MD 5: 1x (unknown-gtag-99) v0: ignored", 0) >= 0);
     hm2_free(hm2);
     t_setup_5i20(&im);
-    md_set(5, 0x010100C1, 0x10065A00, 0x3C); /* SSerial */
+    md_set(5, 0x010100C3, 0x10065A00, 0x3C); /* SSR: known name, not run */
     hm2 = probe(NULL, &err);
     CHECK(hm2 != NULL);
-    CHECK(tlog_find(&lg, "hm2/hm2_5i20.0: MD 5: 1x Smart Serial Interface v0: ignored", 0) >= 0);
+    CHECK(tlog_find(&lg, "hm2/hm2_5i20.0: MD 5: 1x SSR v0: ignored", 0) >= 0);
     CHECK(!tlog_contains(&lg, "unknown function"));
+    hm2_free(hm2);
+    t_setup_5i20(&im);
+    md_set(5, 0x010100C1, 0x10065A00, 0x3C); /* SSerial: run by sserial.c */
+    hm2 = probe(NULL, &err);
+    CHECK(hm2 != NULL);
+    CHECK(tlog_find(&lg, "hm2/hm2_5i20.0: MD 5: 1x Smart Serial Interface v0: accepted, using 1",
+                    0) >= 0);
     hm2_free(hm2);
 }
 

@@ -238,6 +238,22 @@ static int sim_send_queued_writes(hm2_llio_t *llio)
     return 0;
 }
 
+/* ---- board time ---- */
+
+static int sim_delay(hm2_llio_t *llio, long ns)
+{
+    struct hm2_sim_board *sb = board_of(llio);
+    if (sb->dead)
+        return -ENODEV;
+    if (ns <= 0)
+        return 0;
+    struct vb_time t = {VB_TIME_ADVANCE, 0, (uint64_t)ns};
+    pthread_mutex_lock(&sb->lock);
+    int r = vbc_call(&sb->vbc, VB_TIME, 0, &t, sizeof(t));
+    pthread_mutex_unlock(&sb->lock);
+    return r ? failed(sb, r, "board time advance") : 0;
+}
+
 /* ---- configuration port ---- */
 
 static int config_call(struct hm2_sim_board *sb, uint32_t op, const uint8_t *bits, uint32_t n,
@@ -375,6 +391,7 @@ int hm2_sim_setup(struct hm2_sim_board *sb, const char *path, const char *board,
     l->send_queued_reads = sim_send_queued_reads;
     l->queue_write = sim_queue_write;
     l->send_queued_writes = sim_send_queued_writes;
+    l->delay = sim_delay;
     if (sb->info->programmable) {
         l->reset = sim_reset;
         l->program_fpga = sim_program_fpga;

@@ -111,6 +111,10 @@ struct hm2_config {
     char sserial_modes[HM2_MAX_SSERIAL_PORTS][9];
 };
 
+/* Smart Serial channel mode from sserial_port_N: '0'..'9', or 'x' for a
+ * channel left to GPIO (a channel the string does not reach: '0'). */
+char hm2_sserial_mode(const struct hm2_config *cfg, int port, int chan);
+
 void hm2_config_defaults(struct hm2_config *cfg);
 /* Parse `str` (may be NULL or empty).  0 or -EINVAL with the LinuxCNC
  * message in err. */
@@ -192,6 +196,7 @@ struct hm2_encoder_state;
 struct hm2_stepgen_state;
 struct hm2_pwmgen_state;
 struct hm2_led_state;
+struct hm2_sserial_state;
 struct hm2_raw_state;
 struct hm2_tram;
 
@@ -209,7 +214,7 @@ struct hostmot2 {
     struct hm2_pin *pin;
     int num_pins;
 
-    struct hm2_module watchdog, ioport, encoder, muxed_encoder, stepgen, pwmgen, led;
+    struct hm2_module watchdog, ioport, encoder, muxed_encoder, stepgen, pwmgen, led, sserial;
     int num_leds;
 
     /* HAL layer (NULL in a probe-only board) */
@@ -220,6 +225,7 @@ struct hostmot2 {
     struct hm2_stepgen_state *stepgen_s;
     struct hm2_pwmgen_state *pwmgen_s;
     struct hm2_led_state *led_s;
+    struct hm2_sserial_state *sserial_s;
     struct hm2_raw_state *raw_s;
     hal_bit_t *io_error; /* param storage, hal_malloc'd */
     bool needs_reset;

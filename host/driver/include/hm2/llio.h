@@ -96,6 +96,11 @@ struct hm2_llio {
     int (*reset)(hm2_llio_t *self);
     int (*program_fpga)(hm2_llio_t *self, const struct hm2_bitfile *bitfile);
 
+    /* Let `ns` nanoseconds of board time pass (optional; load-time waits
+     * such as Smart Serial discovery).  A virtual board advances its
+     * clocks; NULL: the core sleeps on the wall clock. */
+    int (*delay)(hm2_llio_t *self, long ns);
+
     /* Period in ns of the thread that runs the board's read/write functions,
      * set by the core before each call (0 outside a thread).  Backends with
      * timeouts relative to the period (hm2_eth) read it. */
