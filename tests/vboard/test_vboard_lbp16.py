@@ -7,6 +7,8 @@ counters and datagrams that get no reply."""
 
 from __future__ import annotations
 
+import os
+import resource
 import socket
 import subprocess
 import struct
@@ -220,6 +222,11 @@ def test_flash_id_erase_write_read(eth96: tuple[vboard.VBoardProcess, Lbp16Clien
         (["--board", "5i20", "--udp", "127.0.0.1:0"], "--udp is for Ethernet boards"),
         (["--board", "7i92"], "--socket and --board are required"),
         (["--board", "7i92", "--udp", "192.0.2.1"], "cannot listen for LBP16 on UDP 192.0.2.1"),
+        (
+            ["--board", "7i96s", "--udp", "127.0.0.1:0", "--udp-tick", "10", "--udp-rt"],
+            "--udp-rt needs --udp and a free-running board (no --udp-tick",
+        ),
+        (["--board", "7i96s", "--socket", "x.sock", "--udp-rt"], "--udp-rt needs --udp"),
     ],
 )
 def test_command_line_errors(args: list[str], text: str) -> None:
@@ -300,3 +307,28 @@ def test_corrupt_user_image_falls_back(sockdir: Path, tmp_path: Path) -> None:
         stop_clean(p)
     # the flash file decides at the next start: --firmware does not rewrite it
     assert flash.read_bytes()[USER_96S : USER_96S + 13] == b"not a bitfile"
+
+
+def rt_allowed() -> bool:
+    return os.geteuid() == 0 or resource.getrlimit(resource.RLIMIT_RTPRIO)[0] >= 1
+
+
+def test_udp_rt_serves_at_realtime_priority(sockdir: Path) -> None:
+    """--udp-rt (stock mesaflash's 2 ms probe window on a loaded machine):
+    the serving loop runs SCHED_FIFO 1 and answers; where the process may
+    not raise its priority the start fails saying why."""
+    ip = lbp16.unique_loopback()
+    if not rt_allowed():
+        with pytest.raises(RuntimeError, match="cannot switch to SCHED_FIFO priority 1"):
+            start(sockdir, "7i96s", "7i96s_d", ip, "--udp-rt")
+        return
+    p = start(sockdir, "7i96s", "7i96s_d", ip, "--udp-rt")
+    ip = p.ready_line.split("udp ")[1].split(":")[0]
+    try:
+        assert os.sched_getscheduler(p.proc.pid) == os.SCHED_FIFO
+        assert os.sched_getparam(p.proc.pid).sched_priority == 1
+        with Lbp16Client(ip) as c:
+            assert c.words32(lbp16.SPACE_HM2, 0x100, 1) == [IDROM_COOKIE]
+            assert c.board_name().rstrip(b"\0") == b"7I96S"
+    finally:
+        stop_clean(p)

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <netinet/in.h>
+#include <sched.h>
 #include <sys/socket.h>
 #include <unistd.h>
 #include <vector>
@@ -39,6 +40,19 @@ bool parse_udp_addr(const std::string &spec, uint32_t &ip, uint16_t &port, std::
     }
     ip = ntohl(a.s_addr);
     return true;
+}
+
+int serve_at_rt_priority(std::string &err)
+{
+    sched_param sp{};
+    sp.sched_priority = 1;
+    if (::sched_setscheduler(0, SCHED_FIFO, &sp) < 0) {
+        int e = errno;
+        err = std::string("--udp-rt: cannot switch to SCHED_FIFO priority 1: ") +
+              std::strerror(e) + " (needs root, CAP_SYS_NICE or ulimit -r 1)";
+        return -e;
+    }
+    return 0;
 }
 
 namespace {

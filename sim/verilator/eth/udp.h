@@ -20,6 +20,16 @@ constexpr uint16_t kLbp16Port = 27181;
 // with a message for anything else.
 bool parse_udp_addr(const std::string &spec, uint32_t &ip, uint16_t &port, std::string &err);
 
+// vboard --udp-rt: the calling thread (the server loop) goes to SCHED_FIFO
+// priority 1, so a datagram is answered within microseconds whatever else
+// the machine runs.  Stock mesaflash needs that on a loaded machine: its
+// probe reads the IDROM cookie, sleeps 2 ms and looks once (non-blocking)
+// for the reply; a responder at normal priority waiting for a CPU misses
+// that window ("No 7I96S board found").  Only for a free-running board,
+// whose loop sleeps between short slices.  -errno with a message (needs
+// root, CAP_SYS_NICE or an RLIMIT_RTPRIO of at least 1).
+int serve_at_rt_priority(std::string &err);
+
 class UdpEndpoint final : public FdHandler {
   public:
     UdpEndpoint(EthBoard &board, bool log);

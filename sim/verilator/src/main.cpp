@@ -33,6 +33,7 @@ struct Options {
     uint32_t flash_speedup = 1;
     std::string udp;
     uint32_t udp_tick_us = 0; // --udp-tick: board time per servo datagram (0 = free-running)
+    bool udp_rt = false;      // --udp-rt: serve LBP16 at real-time priority
     std::vector<vb_loop> loops;
     std::vector<vb_quad> quads;
     std::vector<vb::sserial::RemoteSpec> remotes;
@@ -47,7 +48,7 @@ void usage(FILE *f)
                  "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd|.fst] [--log]\n"
                  "              [--spin USEC] [--socket-mode OCTAL] [--machine FILE] [--sserial P.C=TYPE]...\n"
                  "              [--flash FILE] [--flash-part m25p16] [--flash-speedup N]\n"
-                 "       vboard --udp ADDR[:PORT] [--udp-tick USEC] [--socket PATH] --board 7i92|7i96s\n"
+                 "       vboard --udp ADDR[:PORT] [--udp-tick USEC | --udp-rt] [--socket PATH] --board 7i92|7i96s\n"
                  "              [--firmware NAME] [--flash FILE] ...\n"
                  "       vboard --list\n"
                  "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");
@@ -159,7 +160,7 @@ int parse_args(int argc, char **argv, Options &o)
         {"flash", required_argument, nullptr, 'F'},   {"flash-part", required_argument, nullptr, 'P'},
         {"flash-speedup", required_argument, nullptr, 'S'},
         {"udp", required_argument, nullptr, 'U'},     {"udp-tick", required_argument, nullptr, 'T'},
-        {"sserial", required_argument, nullptr, 'R'},
+        {"sserial", required_argument, nullptr, 'R'}, {"udp-rt", no_argument, nullptr, 'Y'},
         {nullptr, 0, nullptr, 0}};
     std::string err;
     int c;
@@ -192,6 +193,7 @@ int parse_args(int argc, char **argv, Options &o)
             }
             break;
         case 'U': o.udp = optarg; break;
+        case 'Y': o.udp_rt = true; break;
         case 'm': {
             char *end = nullptr;
             errno = 0;
@@ -244,6 +246,11 @@ int parse_args(int argc, char **argv, Options &o)
     }
     if (o.udp_tick_us && o.udp.empty()) {
         err = "--udp-tick needs --udp";
+        goto bad;
+    }
+    if (o.udp_rt && (o.udp.empty() || o.udp_tick_us)) {
+        err = "--udp-rt needs --udp and a free-running board (no --udp-tick: a tick would run "
+              "the simulation at real-time priority)";
         goto bad;
     }
     if (!o.list && ((o.server.socket_path.empty() && o.udp.empty()) || o.board.empty())) {
@@ -442,7 +449,8 @@ int main(int argc, char **argv)
             udp->set_tick_ns(o.udp_tick_us * 1000ull);
         }
         if ((!o.server.socket_path.empty() && server.open(err) < 0) ||
-            (udp && udp->open(udp_ip, udp_port, err) < 0)) {
+            (udp && udp->open(udp_ip, udp_port, err) < 0) ||
+            (o.udp_rt && vb::eth::serve_at_rt_priority(err) < 0)) {
             std::fprintf(stderr, "vboard: %s\n", err.c_str());
             ::close(sfd);
             return 1;

@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 #
 # Records Debian's stock mesaflash talking to the virtual Ethernet boards
-# (vboard --udp on loopback; no other network needed).  Not part of
+# (vboard --udp on loopback; no other network needed).  The boards serve at
+# real-time priority (--udp-rt, needs root): mesaflash's probe gives the
+# first reply only 2 ms (README.md).  Not part of
 # `make test`: the outputs in this directory are what the tests compare
 # against.  Run from the repository root after `make build`:
 #   bash tests/data/eth/mesaflash/record.sh
@@ -14,10 +16,10 @@ TMP=$(mktemp -d)
 trap 'kill $PID96 $PID92 2>/dev/null || true; rm -rf "$TMP"' EXIT
 mesaflash --version > "$OUT/version.txt" 2>&1 || true
 
-"$VB" --board 7i96s --firmware 7i96s_d --udp 127.0.0.2 --flash "$TMP/f96.bin" --log \
+"$VB" --board 7i96s --firmware 7i96s_d --udp 127.0.0.2 --flash "$TMP/f96.bin" --udp-rt --log \
     > "$TMP/vb96.out" 2> "$TMP/vb96.err" &
 PID96=$!
-"$VB" --board 7i92 --firmware 7I76x2 --udp 127.0.0.3 --flash "$TMP/f92.bin" --log \
+"$VB" --board 7i92 --firmware 7I76x2 --udp 127.0.0.3 --flash "$TMP/f92.bin" --udp-rt --log \
     > "$TMP/vb92.out" 2> "$TMP/vb92.err" &
 PID92=$!
 sleep 1
