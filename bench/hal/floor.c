@@ -8,7 +8,14 @@
  *           LinuxCNC's .time/.tmax/.tmax-increased bookkeeping (the least a
  *           dispatcher that times every function every period can cost);
  *   rdtsc   one time-stamp-counter read alone.
- * Best of many runs, so the figures are the machine's, not its noise.
+ * Then the same "timed" loop and the read alone with the two ordered
+ * variants a dispatcher could use instead of plain rdtsc (x86 only):
+ *   rdtscp        waits until every earlier instruction has executed, so
+ *                 a function's tail is not counted in the next one's time;
+ *   lfence;rdtsc  the same ordering through a load fence.
+ * Output: loop timed rdtsc timed_rdtscp timed_lfence rdtscp lfence_rdtsc
+ * (clocks per function / per read).  Best of many runs, so the figures are
+ * the machine's, not its noise.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -19,6 +26,20 @@ static inline uint64_t tsc(void)
 {
     unsigned int lo, hi;
     __asm__ __volatile__("rdtsc" : "=a"(lo), "=d"(hi));
+    return ((uint64_t)hi << 32) | lo;
+}
+
+static inline uint64_t tscp(void)
+{
+    unsigned int lo, hi, aux;
+    __asm__ __volatile__("rdtscp" : "=a"(lo), "=d"(hi), "=c"(aux));
+    return ((uint64_t)hi << 32) | lo;
+}
+
+static inline uint64_t tscf(void)
+{
+    unsigned int lo, hi;
+    __asm__ __volatile__("lfence\n\trdtsc" : "=a"(lo), "=d"(hi)::"memory");
     return ((uint64_t)hi << 32) | lo;
 }
 
@@ -45,6 +66,37 @@ typedef struct {
     store_t *st;
 } entry_t;
 
+/* One timed pass over the table with the time stamp READ(); clocks. */
+#define TIMED_PASS(READ, e, best)                                                                \
+    do {                                                                                       \
+        uint64_t t0_ = tsc(), start_ = READ();                                                 \
+        for (entry_t *p = (e); p < (e) + N; p++) {                                             \
+            p->f(p->arg, 100000);                                                              \
+            uint64_t now_ = READ();                                                            \
+            int32_t dt_ = (int32_t)(now_ - start_);                                            \
+            start_ = now_;                                                                     \
+            *p->st->runtime = dt_;                                                             \
+            int inc_ = dt_ > p->st->maxtime;                                                   \
+            if (inc_)                                                                          \
+                p->st->maxtime = dt_;                                                          \
+            p->st->increased = inc_;                                                           \
+        }                                                                                      \
+        uint64_t t1_ = tsc();                                                                  \
+        if (t1_ - t0_ < (best))                                                                \
+            (best) = t1_ - t0_;                                                                \
+    } while (0)
+
+/* N reads alone; clocks. */
+#define READS(READ, best)                                                                      \
+    do {                                                                                       \
+        uint64_t t0_ = tsc();                                                                  \
+        for (int i_ = 0; i_ < N; i_++)                                                         \
+            (void)READ();                                                                      \
+        uint64_t t1_ = tsc();                                                                  \
+        if (t1_ - t0_ < (best))                                                                \
+            (best) = t1_ - t0_;                                                                \
+    } while (0)
+
 int main(void)
 {
     static volatile _Bool bits[3 * N];
@@ -58,6 +110,8 @@ int main(void)
         e[i] = (entry_t){and2, &a[i], &st[i]};
     }
     uint64_t best_loop = UINT64_MAX, best_timed = UINT64_MAX, best_tsc = UINT64_MAX;
+    uint64_t best_timed_p = UINT64_MAX, best_timed_f = UINT64_MAX;
+    uint64_t best_tscp = UINT64_MAX, best_tscf = UINT64_MAX;
     for (int rep = 0; rep < 3000; rep++) {
         uint64_t t0 = tsc();
         for (entry_t *p = e; p < e + N; p++)
@@ -65,29 +119,15 @@ int main(void)
         uint64_t t1 = tsc();
         if (t1 - t0 < best_loop)
             best_loop = t1 - t0;
-        t0 = tsc();
-        uint64_t start = t0;
-        for (entry_t *p = e; p < e + N; p++) {
-            p->f(p->arg, 100000);
-            uint64_t now = tsc();
-            int32_t dt = (int32_t)(now - start);
-            start = now;
-            *p->st->runtime = dt;
-            int inc = dt > p->st->maxtime;
-            if (inc)
-                p->st->maxtime = dt;
-            p->st->increased = inc;
-        }
-        t1 = tsc();
-        if (t1 - t0 < best_timed)
-            best_timed = t1 - t0;
-        t0 = tsc();
-        for (int i = 0; i < N; i++)
-            (void)tsc();
-        t1 = tsc();
-        if (t1 - t0 < best_tsc)
-            best_tsc = t1 - t0;
+        TIMED_PASS(tsc, e, best_timed);
+        READS(tsc, best_tsc);
+        TIMED_PASS(tscp, e, best_timed_p);
+        TIMED_PASS(tscf, e, best_timed_f);
+        READS(tscp, best_tscp);
+        READS(tscf, best_tscf);
     }
-    printf("%.2f %.2f %.2f\n", (double)best_loop / N, (double)best_timed / N, (double)best_tsc / N);
+    printf("%.2f %.2f %.2f %.2f %.2f %.2f %.2f\n", (double)best_loop / N, (double)best_timed / N,
+           (double)best_tsc / N, (double)best_timed_p / N, (double)best_timed_f / N,
+           (double)best_tscp / N, (double)best_tscf / N);
     return 0;
 }

@@ -6,14 +6,15 @@ from __future__ import annotations
 import sys
 
 
-def dispatch(nfunct: int, period: int, samples: int) -> str:
-    """A thread with nfunct and2 functions; its own run time (THREAD.time,
+def dispatch(nfunct: int, period: int, samples: int, comp: str = "and2") -> str:
+    """A thread with nfunct functions of `comp` (and2, or bench/hal's
+    pinload for more than 1,000); its own run time (THREAD.time,
     time-stamp-counter clocks, measured the same way by LinuxCNC 2.9 and
     us) is read `samples` times while it runs."""
     lines = [f"loadrt threads name1=t period1={period}"]
     if nfunct > 0:
-        lines.append(f"loadrt and2 count={nfunct}")
-    lines += [f"addf and2.{i} t" for i in range(nfunct)]
+        lines.append(f"loadrt {comp} count={nfunct}")
+    lines += [f"addf {comp}.{i} t" for i in range(nfunct)]
     lines += ["start", "loadusr -w sleep 0.5"]
     for _ in range(samples):
         lines += ["getp t.time", "loadusr -w sleep 0.01"]
@@ -63,6 +64,7 @@ def load2000() -> str:
 if __name__ == "__main__":
     kind = sys.argv[1]
     if kind == "dispatch":
-        sys.stdout.write(dispatch(int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])))
+        comp = sys.argv[5] if len(sys.argv) > 5 else "and2"
+        sys.stdout.write(dispatch(int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4]), comp))
     else:
         sys.stdout.write(load2000())
