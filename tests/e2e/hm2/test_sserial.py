@@ -10,19 +10,22 @@ read back from the virtual 7I76 itself (VB_SSERIAL status)."""
 
 from __future__ import annotations
 
+import csv
 import json
 import re
+import subprocess
 from pathlib import Path
 from typing import Iterator
 
 import pytest
-from hm2e2e import PROBE, halrun, needs_vboard, num, values  # noqa: F401
+from hm2e2e import BUILD, PROBE, ROOT, halrun, needs_vboard, num, values
 import sys
 import vboard
 
 pytestmark = needs_vboard
 
 PFX = "hm2_5i25.0"
+PINMAPS = ROOT / "tests" / "data" / "pinmaps"
 R = f"{PFX}.7i76.0.0"
 PORT = f"{PFX}.sserial.port-0"
 
@@ -176,3 +179,43 @@ def test_bad_sserial_port_string_is_refused(
     assert r.returncode != 0
     assert f'invalid token in config string: "{cfg}" ({msg})' in out, out
     assert f"{R}.input-00" not in out
+
+
+def test_hm2pinout_lists_the_sserial_channels(board: Path) -> None:
+    """Like mesaflash --readhmid: the SSerial module and every channel pin
+    of Mesa's pin file (tests/data/pinmaps/PIN_7I76x2_34.csv)."""
+    hm2pinout = BUILD / "bin" / "hm2pinout"
+    rows = [
+        r
+        for r in csv.DictReader((PINMAPS / "PIN_7I76x2_34.csv").open())
+        if r["sec_tag_name"] == "SSerial"
+    ]
+    assert len(rows) == 8
+    r = subprocess.run(
+        [str(hm2pinout), "-p", f"sim:{board}"], capture_output=True, text=True, timeout=60
+    )
+    assert r.returncode == 0, r.stderr
+    assert re.search(r"Module: SSerial\n\s+There are 1 of SSerial in configuration", r.stdout)
+    for row in rows:
+        name = row["sec_pin_name"].replace("TxData", "TXData").replace("RxData", "RXData")
+        d = "Out" if row["direction"] == "out" else "In"
+        pat = rf"\s{row['io_pin']}\s+IOPort\s+SSerial\s+0\s+{name}\s+\({d}\)"
+        assert re.search(pat, r.stdout), pat
+    r = subprocess.run(
+        [str(hm2pinout), "-s", "-c", "sserial_port_0=00x0", f"sim:{board}"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert r.returncode == 0, r.stderr
+    for row in rows:
+        k = int(row["sec_pin_name"][-1])
+        io = int(row["io_pin"])
+        if k == 2:
+            assert re.search(rf"IO Pin {io:03d} \(P\d-\d\d\): IOPort", r.stdout)
+        else:
+            kind = "tx" if row["direction"] == "out" else "rx"
+            d = "Output" if row["direction"] == "out" else "Input"
+            want = f"IO Pin {io:03d} (P"
+            line = next(x for x in r.stdout.splitlines() if want in x)
+            assert line.endswith(f"Smart Serial Interface #0, pin {kind}{k} ({d})"), line
