@@ -185,3 +185,65 @@ def test_bad_sserial_option_is_refused(sockdir: Path, board_name: str, arg: str,
     )
     assert r.returncode != 0
     assert msg in r.stderr
+
+
+@pytest.mark.parametrize("mode", [0, 2])
+def test_exchange_time_matches_the_frame_lengths(board: VBoardProcess, mode: int) -> None:
+    """A doit takes the wire time of both frames (docs/sserial.md): host
+    1 + ceil(48/8) + CRC bytes, answer 1 + ceil(in_bits/8) + CRC bytes, 10
+    bits each, plus the remote's 2-bit turnaround; a little more for the
+    UART synchronizers and the 500 ns polling step here."""
+    with board.client() as c:
+        clk = c.hello().clock_low_hz
+        bit_ns = round(clk / 2.5e6) * 1e9 / clk
+        start(c, mode)
+        c.write(CMD, 0x1001)
+        t0 = c.now()
+        while c.read32(CMD) != 0:
+            c.advance(500)
+        took = c.now() - t0
+        nbytes = (1 + 6 + 1) + (1 + (IN_BITS[mode] + 7) // 8 + 1)
+        wire = (nbytes * 10 + 2) * bit_ns
+        assert wire <= took <= wire + 1500, (took, wire)
+
+
+MACHINE_5I25 = """board = "5i25"
+firmware = "7I76x2"
+[[axis]]
+name = "s"
+type = "rotary"
+[axis.motor]
+type = "dc"
+resistance_ohm = 1.0
+inductance_h = 1e-3
+kt_nm_per_a = 0.08
+ke_v_s_per_rad = 0.08
+inertia_kg_m2 = 2e-5
+[axis.amplifier]
+a = "IO 0"
+b = "IO 1"
+bus_v = 24
+[axis.encoder]
+a = "Encoder 0 A"
+b = "Encoder 0 B"
+index = "Encoder 0 Index"
+counts_per_rev = 400
+"""
+
+
+def test_remote_and_machine_run_together(sockdir: Path) -> None:
+    """--machine and --sserial on one board: the machine keeps its pins
+    (the encoder counts), the remote its channel (exchanges succeed)."""
+    f = sockdir / "m.toml"
+    f.write_text(MACHINE_5I25)
+    args = ["--machine", str(f), "--sserial", "0.0=7i76"]
+    with VBoardProcess(sockdir / "mm.sock", "5i25", "7I76x2", args) as p, p.client() as c:
+        start(c, 0)
+        ss(c, "set 0.0 inputs 0x1234")
+        c0 = c.read32(0x3000) & 0xFFFF
+        for _ in range(5):
+            assert run_cmd(c, 0x1001) == (0, 0)
+        assert c.read32(IF0) == 0x1234
+        assert (c.read32(0x3000) & 0xFFFF) != c0  # the motor turned the encoder
+        assert json.loads(c.plant("status"))["axes"]
+        assert vboard_json(c)["process"] == 5
