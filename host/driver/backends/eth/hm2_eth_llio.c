@@ -218,6 +218,34 @@ static int eth_write(hm2_llio_t *llio, uint32_t addr, const void *buffer, size_t
     return 0;
 }
 
+/* Load-time waits (llio delay, e.g. Smart Serial discovery): the board's
+ * own wait register (LBP16 timer space 0x02, microseconds) holds its
+ * command processing, so the tagged reply comes after the board time has
+ * passed, on a real card as on a virtual one in lockstep.  The reply may
+ * take long on a simulated board: the timeout allows 200 times the wait. */
+#define DELAY_SLOWDOWN 200
+static int eth_delay(hm2_llio_t *llio, long ns)
+{
+    struct hm2_eth_board *b = (struct hm2_eth_board *)llio;
+    long us = (ns + 999) / 1000;
+    while (us > 0) {
+        uint16_t chunk = (uint16_t)(us > 0xFFFF ? 0xFFFF : us);
+        struct lbp16_pkt p;
+        uint8_t reply[LBP16_MAX_PACKET];
+        lbp16_reset(&p);
+        lbp16_add_write(&p, LBP16_SPACE_TIMERS, 2, LBP16_TIMER_WAIT_US, 1, 0, &chunk);
+        lbp16_add_read(&p, LBP16_SPACE_TIMERS, 2, 0, 1, 0); /* a reply to wait for */
+        int r = hm2_eth_transact(b, &p, reply, SYNC_TIMEOUT_US + chunk * DELAY_SLOWDOWN, 1);
+        if (r) {
+            logf_(b, HM2_ERR, "hm2_eth: %s: no reply to a %u us board wait", b->ip,
+                  (unsigned)chunk);
+            return -EIO;
+        }
+        us -= chunk;
+    }
+    return 0;
+}
+
 /* ---- the servo cycle ---------------------------------------------------- */
 
 static int eth_queue_read(hm2_llio_t *llio, uint32_t addr, void *buffer, size_t size)
@@ -480,6 +508,7 @@ int hm2_eth_setup(struct hm2_eth_board *b, const char *ip, int index, hm2_log_fn
     b->llio.send_queued_reads = eth_send_queued_reads;
     b->llio.request_queued_reads = eth_request_queued_reads;
     b->llio.receive_queued_reads = eth_receive_queued_reads;
+    b->llio.delay = eth_delay;
     b->llio.queue_write = eth_queue_write;
     b->llio.send_queued_writes = eth_send_queued_writes;
     b->llio.priv = b;

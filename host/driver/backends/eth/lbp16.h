@@ -41,6 +41,7 @@ enum lbp16_space {
 #define LBP16_SCRATCH_READ_SEQ 0x10
 #define LBP16_SCRATCH_WRITE_SEQ 0x14
 #define LBP16_SCRATCH_SYNC_TAG 0x18 /* tag echoed by synchronous requests */
+#define LBP16_TIMER_WAIT_US 0x02    /* write: the board waits that many us */
 #define LBP16_STATUS_RX_PACKETS 0x08
 #define LBP16_STATUS_WRITE_ENABLE 0x1A
 #define LBP16_WRITE_ENABLE_KEY 0x5A03
