@@ -172,6 +172,7 @@ static int setup_inproc(struct hs_slot *s, int i, int comp_id)
     if (r)
         return r;
     s->set_up = 1;
+    s->ib.stats = stats != 0;
     if ((r = hm2_sim_inproc_loops(&s->ib, loops[i])))
         return r;
     int index = type_index((const struct hs_slot *)s - i, i, s->ib.hello.board);

@@ -111,6 +111,33 @@ static uint64_t mono_ns(void)
     return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
 }
 
+/* Time of one flush call, and the library's counters around it (stats=1). */
+struct flush_meter {
+    struct vbi_stats st;
+    uint64_t t0;
+};
+
+static void meter_start(struct hm2_sim_inproc *ib, struct flush_meter *m)
+{
+    if (!ib->stats)
+        return;
+    ib->api->stats(ib->vb, &m->st);
+    m->t0 = mono_ns();
+}
+
+static void meter_stop(struct hm2_sim_inproc *ib, struct flush_meter *m)
+{
+    if (!ib->stats)
+        return;
+    uint64_t t1 = mono_ns();
+    struct vbi_stats st;
+    ib->api->stats(ib->vb, &st);
+    ib->flush_ns += t1 - m->t0;
+    ib->model_ns += st.board_ns - m->st.board_ns;
+    ib->words_read += st.read_words - m->st.read_words;
+    ib->words_written += st.write_words - m->st.write_words;
+}
+
 static int check_xfer(struct hm2_sim_inproc *ib, uint32_t addr, size_t size, const char *op)
 {
     if ((addr & 3u) || (size & 3u) || size == 0 || addr > 0xFFFFu || size > 0x10000u) {
@@ -202,13 +229,10 @@ static int ip_send_queued_reads(hm2_llio_t *llio)
     if (n == 0)
         return 0;
     pthread_mutex_lock(&ib->lock);
-    if (!ib->have_base) {
-        ib->api->stats(ib->vb, &ib->base);
-        ib->have_base = 1;
-    }
-    uint64_t t0 = mono_ns();
+    struct flush_meter m;
+    meter_start(ib, &m);
     int r = ib->api->read(ib->vb, host_time(ib), ib->rx, ib->rdest, (size_t)n);
-    ib->flush_ns += mono_ns() - t0;
+    meter_stop(ib, &m);
     ib->read_flushes++;
     pthread_mutex_unlock(&ib->lock);
     if (r) {
@@ -266,9 +290,10 @@ static int ip_send_queued_writes(hm2_llio_t *llio)
     for (int i = 0; i < n; i++) /* wbuf may have moved while queueing */
         ib->wsrc[i] = ib->wbuf + ib->woff[i];
     pthread_mutex_lock(&ib->lock);
-    uint64_t t0 = mono_ns();
+    struct flush_meter m;
+    meter_start(ib, &m);
     int r = ib->api->write(ib->vb, host_time(ib), ib->wx, ib->wsrc, (size_t)n);
-    ib->flush_ns += mono_ns() - t0;
+    meter_stop(ib, &m);
     ib->write_flushes++;
     pthread_mutex_unlock(&ib->lock);
     if (r) {
@@ -415,26 +440,23 @@ int hm2_sim_inproc_loops(struct hm2_sim_inproc *ib, const char *spec)
 
 void hm2_sim_inproc_report(struct hm2_sim_inproc *ib)
 {
-    if (!ib->vb)
+    if (!ib->vb || !ib->stats)
         return;
-    struct vbi_stats st;
     pthread_mutex_lock(&ib->lock);
-    ib->api->stats(ib->vb, &st);
-    uint64_t periods = ib->read_flushes, flush_ns = ib->flush_ns;
+    uint64_t periods = ib->read_flushes, flush_ns = ib->flush_ns, model_ns = ib->model_ns;
+    uint64_t rd = ib->words_read, wr = ib->words_written;
     pthread_mutex_unlock(&ib->lock);
     if (periods == 0) {
         IB_LOG(ib, HM2_PRINT, "%s: in-process board: no queued reads yet", ib->llio.name);
         return;
     }
-    /* since the first flush (setup's calls left out) */
     double per = (double)flush_ns / (double)periods;
-    double model = (double)(st.board_ns - ib->base.board_ns) / (double)periods;
+    double model = (double)model_ns / (double)periods;
     IB_LOG(ib, HM2_PRINT,
            "%s: in-process board: %llu cycles (queued reads + writes); per cycle %.0f ns in the "
            "board calls, %.0f ns in the model, %.0f ns transport; %.1f words read, %.1f written",
            ib->llio.name, (unsigned long long)periods, per, model, per - model,
-           (double)(st.read_words - ib->base.read_words) / (double)periods,
-           (double)(st.write_words - ib->base.write_words) / (double)periods);
+           (double)rd / (double)periods, (double)wr / (double)periods);
 }
 
 void hm2_sim_inproc_teardown(struct hm2_sim_inproc *ib)

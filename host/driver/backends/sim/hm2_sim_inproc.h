@@ -61,10 +61,11 @@ struct hm2_sim_inproc {
     uint8_t *wbuf;
     size_t wlen, wbcap;
     /* statistics: queued flushes and the wall ns spent in those calls */
+    int stats;                   /* 1: measure the flushes (below) */
     uint64_t read_flushes, write_flushes;
-    uint64_t flush_ns;
-    struct vbi_stats base; /* the library's counters at the first flush */
-    int have_base;
+    uint64_t flush_ns;           /* wall ns in the flush calls */
+    uint64_t model_ns;           /* of it, in the board model (library's count) */
+    uint64_t words_read, words_written;
 };
 
 /* A new board `board` with the built-in firmware `firmware` (NULL/"" =
@@ -76,7 +77,7 @@ int hm2_sim_inproc_setup(struct hm2_sim_inproc *ib, const struct hm2_sim_inproc_
 /* Wire output pin `from` to input pin `to` for every FROM:TO[:inv] word of
  * `spec` (space separated).  0, or -errno after logging the bad word. */
 int hm2_sim_inproc_loops(struct hm2_sim_inproc *ib, const char *spec);
-/* One line on where a servo period's time went since setup: per queued
+/* With stats set: one line on where the servo periods' time went: per queued
  * read+write pair, the ns spent in the calls to the board, of them in the
  * board model (clock edges of the bus cycles and of the time advance), and
  * the rest (the transport: checks, copies, calls); words moved. */
