@@ -172,6 +172,9 @@ def test_no_remote_no_sserial_request(sockdir: Path) -> None:
         ("5i25", "0.0=7i99", "unknown remote board '7i99'"),
         ("5i25", "4.0=7i76", "want P.C=TYPE"),
         ("5i25", "0.4=7i76", 'has no pin "SSerial 0 TxData4"'),
+        ("5i25", "0.7=7i77", "a 7i77 takes two channels"),
+        ("5i25", "0.3=7i77", 'has no pin "SSerial 0 TxData4"'),
+        ("5i25", "0.0=7i77-analog", "unknown remote board"),
         ("5i20", "0.0=7i76", "no firmware of board 5i20 has a Smart Serial port"),
     ],
 )

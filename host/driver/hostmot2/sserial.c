@@ -51,7 +51,7 @@ struct hm2_sserial_state {
     struct ss_port *port;
 };
 
-static const struct ss_remote_type *const remote_types[] = {&hm2_ss_7i76};
+static const struct ss_remote_type *const remote_types[] = {&hm2_ss_7i76, &hm2_ss_7i77};
 
 #define WAIT_STEP_NS 20000L
 #define WAIT_STEPS 250 /* 5 ms: discovery of 8 channels takes < 1 ms */
@@ -125,7 +125,7 @@ static int identify(hostmot2_t *hm2, struct ss_port *p, int c)
     if (!ch->type) {
         hm2_msg(hm2, HM2_ERR,
                 "Smart Serial port %d channel %d: remote '%s' (unit 0x%08X) is not a board "
-                "this driver knows (known: 7i76); channel not used",
+                "this driver knows (known: 7i76, 7i77); channel not used",
                 p->index, c, name, ch->unit);
         return 0;
     }

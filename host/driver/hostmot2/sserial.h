@@ -49,6 +49,6 @@ struct ss_chan {
     uint32_t *rd_cs, *rd_if[3], *wr_if[3];
 };
 
-extern const struct ss_remote_type hm2_ss_7i76;
+extern const struct ss_remote_type hm2_ss_7i76, hm2_ss_7i77;
 
 #endif

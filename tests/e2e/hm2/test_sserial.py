@@ -219,3 +219,36 @@ def test_hm2pinout_lists_the_sserial_channels(board: Path) -> None:
             want = f"IO Pin {io:03d} (P"
             line = next(x for x in r.stdout.splitlines() if want in x)
             assert line.endswith(f"Smart Serial Interface #0, pin {kind}{k} ({d})"), line
+
+
+def test_7i77_io_and_analog_servo_outputs(tmp_path: Path) -> None:
+    """A 7I77 on channels 0 (field I/O, the 7I76's pins) and 1 (six analog
+    outputs, sserial(9) names): values reach the virtual 7I77 scaled as
+    docs/sserial.md says (clamp to min/maxlim, +-scalemax = +-16383)."""
+    sock = tmp_path / "s77.sock"
+    r77 = f"{PFX}.7i77.0"
+    outs = [2.5, -10.0, 12.0, 0.0, -3.3, 7.0]  # 12 V is past maxlim 10: clamped
+    script = load(sock, "sserial_port_0=00xx")
+    script += ss(sock, "i", "set 0.0 inputs 0x80000001")
+    script += f"setp {r77}.0.output-15 1\nsetp {r77}.1.analogena 1\n"
+    script += f"setp {r77}.1.analogout5-scalemax 14\nsetp {r77}.1.analogout4-minlim -2\n"
+    script += "".join(f"setp {r77}.1.analogout{k} {v}\n" for k, v in enumerate(outs))
+    script += "simrun 3ms\n" + tag_pins("in", f"{r77}.0.input-00", f"{r77}.0.input-31")
+    script += ss(sock, "st", "status")
+    with vboard.VBoardProcess(sock, "5i25", "7I76x2", ["--sserial", "0.0=7i77"]):
+        r = halrun(tmp_path, script)
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    v = values(out)
+    assert (num(v, "in", 0), num(v, "in", 1)) == (1, 1)
+    remotes = json.loads(values(r.stdout)["st"][0])["remotes"]
+    io = next(x for x in remotes if x["channel"] == "0.0")
+    an = next(x for x in remotes if x["channel"] == "0.1")
+    assert (io["type"], io["outputs"]) == ("7i77", 0x8000)
+    assert an["analogena"] is True
+    scale = [10.0] * 5 + [14.0]
+    lim = [(-10.0, 10.0)] * 4 + [(-2.0, 10.0), (-10.0, 10.0)]
+    want = [round(min(max(x, lo), hi) / s * 16383) for x, s, (lo, hi) in zip(outs, scale, lim)]
+    assert an["analogout_raw"] == want
+    assert an["process"] == io["process"] > 0
+    assert "Smart Serial port 0 channel 1: found 7i77" in out

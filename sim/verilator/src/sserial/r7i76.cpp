@@ -50,16 +50,21 @@ bool parse_u32(const std::string &s, uint32_t &v)
     return true;
 }
 
+// The 7I76, and the field I/O channel of a 7I77 (the same process data,
+// mode 0 only).
 class R7i76 final : public Personality {
   public:
-    explicit R7i76(uint32_t unit) : unit_(unit) {}
-    std::string type() const override { return "7i76"; }
-    std::array<uint8_t, 4> name() const override { return {'7', 'I', '7', '6'}; }
+    R7i76(uint32_t unit, bool is_7i77) : unit_(unit), i77_(is_7i77) {}
+    std::string type() const override { return i77_ ? "7i77" : "7i76"; }
+    std::array<uint8_t, 4> name() const override
+    {
+        return {'7', 'I', '7', static_cast<uint8_t>(i77_ ? '7' : '6')};
+    }
     uint32_t unit() const override { return unit_; }
 
     bool start(uint8_t mode, uint8_t &in_bits, uint8_t &out_bits) override
     {
-        if (mode > 2)
+        if (mode > (i77_ ? 0 : 2))
             return false;
         mode_ = mode;
         in_bits = mode == 0 ? 32 : mode == 1 ? 80 : 92;
@@ -98,7 +103,7 @@ class R7i76 final : public Personality {
         } else if (a.size() == 2 && a[0] == "field" && parse_double(a[1], x)) {
             field_ = x;
         } else {
-            err = "7i76: want 'inputs MASK', 'input N 0|1' (N 0..31), 'analog N VOLTS' "
+            err = type() + ": want 'inputs MASK', 'input N 0|1' (N 0..31), 'analog N VOLTS' "
                   "(N 0..3) or 'field VOLTS'";
             return -EINVAL;
         }
@@ -109,11 +114,11 @@ class R7i76 final : public Personality {
     {
         char b[512];
         std::snprintf(b, sizeof b,
-                      "\"type\": \"7i76\", \"unit\": %u, \"inputs\": %u, \"outputs\": %u, "
+                      "\"type\": \"%s\", \"part\": \"io\", \"unit\": %u, \"inputs\": %u, \"outputs\": %u, "
                       "\"spinena\": %s, \"spindir\": %s, \"spinout_raw\": %u, "
                       "\"spinout_v\": %.6f, \"analog_v\": [%.4f, %.4f, %.4f, %.4f], "
                       "\"field_v\": %.4f",
-                      unit_, inputs_, outputs_, spinena_ ? "true" : "false",
+                      type().c_str(), unit_, inputs_, outputs_, spinena_ ? "true" : "false",
                       spindir_ ? "true" : "false", dac_, dac_ * kDacFullV / 65535.0, analog_[0],
                       analog_[1], analog_[2], analog_[3], field_);
         return b;
@@ -121,6 +126,7 @@ class R7i76 final : public Personality {
 
   private:
     uint32_t unit_;
+    bool i77_;
     uint8_t mode_ = 0;
     uint32_t inputs_ = 0, outputs_ = 0, dac_ = 0;
     bool spinena_ = false, spindir_ = false;
@@ -130,16 +136,22 @@ class R7i76 final : public Personality {
 
 } // namespace
 
+std::unique_ptr<Personality> make_7i77_analog(uint32_t unit);
+
 std::unique_ptr<Personality> make_personality(const std::string &type, uint32_t unit)
 {
     if (type == "7i76")
-        return std::make_unique<R7i76>(unit);
+        return std::make_unique<R7i76>(unit, false);
+    if (type == "7i77")
+        return std::make_unique<R7i76>(unit, true);
+    if (type == "7i77-analog")
+        return make_7i77_analog(unit);
     return nullptr;
 }
 
 std::string personality_types()
 {
-    return "7i76";
+    return "7i76, 7i77 (two channels: field I/O on C, analog servo outputs on C+1)";
 }
 
 } // namespace vb::sserial

@@ -53,7 +53,11 @@ bool parse_remote(const std::string &arg, RemoteSpec &spec, std::string &err)
     spec.port = static_cast<unsigned>(arg[0] - '0');
     spec.chan = static_cast<unsigned>(arg[2] - '0');
     spec.type = arg.substr(4);
-    if (!make_personality(spec.type, 0)) {
+    if (spec.type == "7i77" && spec.chan == 7) {
+        err = "bad --sserial '" + arg + "': a 7i77 takes two channels (C and C+1), C must be 0..6";
+        return false;
+    }
+    if (spec.type == "7i77-analog" || !make_personality(spec.type, 0)) {
         err = "bad --sserial '" + arg + "': unknown remote board '" + spec.type +
               "' (known: " + personality_types() + ")";
         return false;
@@ -67,7 +71,14 @@ bool Remotes::configure(const std::vector<RemoteSpec> &specs, const std::string 
 {
     double bit_ns = bit_div(clock_low_hz) * 1e9 / clock_low_hz;
     by_tx_.assign(names.size(), -1);
+    // a 7I77 is two channels: field I/O on C, its analog servo part on C+1
+    std::vector<RemoteSpec> all;
     for (const RemoteSpec &s : specs) {
+        all.push_back(s);
+        if (s.type == "7i77")
+            all.push_back(RemoteSpec{s.port, s.chan + 1, "7i77-analog"});
+    }
+    for (const RemoteSpec &s : all) {
         std::string pc = std::to_string(s.port) + "." + std::to_string(s.chan);
         std::string tx = "SSerial " + std::to_string(s.port) + " TxData" + std::to_string(s.chan);
         std::string rx = "SSerial " + std::to_string(s.port) + " RxData" + std::to_string(s.chan);
