@@ -176,10 +176,10 @@ bool Link::answer(std::vector<uint8_t> &reply)
 {
     const std::vector<uint8_t> &f = frame_;
     uint32_t addr = f.size() >= 3 ? (f[1] | f[2] << 8) : 0;
+    if (!plugged_)
+        return true; // heard, but the cable is cut: nothing comes back (unanswered)
     switch (f[0]) {
     case 0x01: {
-        if (!plugged_)
-            return true; // heard, but the cable is cut: nothing comes back
         uint8_t in = 0, out = 0;
         if (!p_->start(f[1], in, out)) {
             started_ = false;
@@ -215,8 +215,7 @@ bool Link::answer(std::vector<uint8_t> &reply)
         process_++;
         std::vector<uint8_t> out(f.begin() + 1, f.end() - 1), in((in_bits_ + 7) / 8, 0);
         uint8_t status = 0;
-        if (plugged_)
-            p_->process(out, in, status);
+        p_->process(out, in, status);
         reply.push_back(status);
         reply.insert(reply.end(), in.begin(), in.end());
         return true;
