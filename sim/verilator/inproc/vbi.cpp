@@ -4,13 +4,17 @@
 // the vboard program's LocalBusBoard, its time rule and its request checks,
 // behind a C table of functions for the hm2_sim module's in-process llio.
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <system_error>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "localbus.h"
@@ -20,6 +24,8 @@ namespace {
 
 constexpr uint32_t kLbWindow = 0x10000;                  // the hm2 address space
 constexpr uint64_t kMaxAdvanceNs = 60ull * 1000000000ull; // as the socket server
+constexpr uint64_t kFreerunSliceNs = 10000;   // board time per step of the board thread
+constexpr uint64_t kFreerunMaxLagNs = 50000000; // behind by more: re-base (as the server)
 
 uint64_t mono_ns()
 {
@@ -33,6 +39,13 @@ uint64_t mono_ns()
 struct vbi_board {
     std::unique_ptr<vb::Board> b;
     std::string err;
+    // Serializes the board between API calls and the free-running thread;
+    // `want` makes that thread step aside when a call waits.
+    std::mutex mu;
+    std::atomic<int> want{0};
+    std::thread runner;
+    std::atomic<bool> running{false};
+    uint64_t fr_wall0 = 0, fr_board0 = 0;
     bool have_epoch = false;
     int64_t epoch = 0;
     vbi_stats st{};
@@ -48,7 +61,7 @@ struct vbi_board {
     // The socket server's lockstep rule (Server::advance_lockstep).
     int advance(uint64_t host_time)
     {
-        if (host_time == 0)
+        if (host_time == 0 || running)
             return 0;
         if (!have_epoch) {
             epoch = static_cast<int64_t>(host_time - b->now_ns());
@@ -95,6 +108,59 @@ struct vbi_board {
 };
 
 namespace {
+
+// Holds the board for an API call: the free-running thread steps aside.
+class Hold {
+  public:
+    explicit Hold(vbi_board *v) : v_(v)
+    {
+        v_->want++;
+        v_->mu.lock();
+        v_->want--;
+    }
+    ~Hold() { v_->mu.unlock(); }
+    Hold(const Hold &) = delete;
+    Hold &operator=(const Hold &) = delete;
+
+  private:
+    vbi_board *v_;
+};
+
+// The board thread of a free-running board (Server::freerun_step's rule).
+void run_free(vbi_board *v)
+{
+    while (v->running) {
+        bool idle;
+        {
+            std::lock_guard<std::mutex> g(v->mu);
+            uint64_t now = v->b->now_ns();
+            uint64_t target = v->fr_board0 + (mono_ns() - v->fr_wall0);
+            if (target > now && target - now > kFreerunMaxLagNs) {
+                v->fr_wall0 = mono_ns();
+                v->fr_board0 = now;
+                target = now + kFreerunSliceNs;
+            }
+            idle = target <= now;
+            if (!idle)
+                v->b->run_until(std::min(target, now + kFreerunSliceNs));
+        }
+        if (idle || v->want > 0) {
+            timespec ts{0, idle ? 50000 : 0};
+            if (idle)
+                nanosleep(&ts, nullptr);
+            else
+                std::this_thread::yield();
+        }
+    }
+}
+
+void stop_free(vbi_board *v)
+{
+    if (!v->runner.joinable())
+        return;
+    v->running = false;
+    v->runner.join();
+}
 
 // Times the board's own work (clock advance, bus cycles) for vbi_stats.
 struct BoardTimer {
@@ -154,6 +220,7 @@ void vbi_close(vbi_board_t *v)
 {
     if (!v)
         return;
+    stop_free(v);
     std::string e;
     v->b->dump(false, "", e);
     delete v;
@@ -163,6 +230,7 @@ const char *vbi_error(const vbi_board_t *v) { return v->err.c_str(); }
 
 void vbi_hello(vbi_board_t *v, vb_hello *h)
 {
+    Hold hold(v);
     std::memset(h, 0, sizeof *h);
     vb::Board &b = *v->b;
     h->version = VB_PROTO_VERSION;
@@ -171,7 +239,7 @@ void vbi_hello(vbi_board_t *v, vb_hello *h)
     h->io_pins = b.pins().size();
     h->clock_low_hz = b.clock_low_hz();
     h->clock_high_hz = b.clock_high_hz();
-    h->lockstep = 1;
+    h->lockstep = v->running ? 0 : 1;
     std::strncpy(h->board, b.name().c_str(), sizeof h->board - 1);
     std::strncpy(h->firmware, b.firmware().c_str(), sizeof h->firmware - 1);
     std::strncpy(h->fpga_part, b.fpga_part().c_str(), sizeof h->fpga_part - 1);
@@ -179,6 +247,7 @@ void vbi_hello(vbi_board_t *v, vb_hello *h)
 
 int vbi_read(vbi_board_t *v, uint64_t host_time, const vb_xfer *x, void *const *dest, size_t n)
 {
+    Hold h(v);
     BoardTimer t(v);
     int rc = v->advance(host_time);
     if (rc < 0 || (rc = v->check(x, n, "read")) < 0)
@@ -199,6 +268,7 @@ int vbi_read(vbi_board_t *v, uint64_t host_time, const vb_xfer *x, void *const *
 int vbi_write(vbi_board_t *v, uint64_t host_time, const vb_xfer *x, const void *const *src,
               size_t n)
 {
+    Hold h(v);
     BoardTimer t(v);
     int rc = v->advance(host_time);
     if (rc < 0 || (rc = v->check(x, n, "write")) < 0)
@@ -222,6 +292,7 @@ int vbi_write(vbi_board_t *v, uint64_t host_time, const vb_xfer *x, const void *
 int vbi_config(vbi_board_t *v, uint64_t host_time, uint32_t op, const uint8_t *bits, size_t len,
                vb_config_status *st)
 {
+    Hold h(v);
     BoardTimer t(v);
     int rc = v->advance(host_time);
     if (rc < 0)
@@ -232,12 +303,14 @@ int vbi_config(vbi_board_t *v, uint64_t host_time, uint32_t op, const uint8_t *b
 
 int vbi_loop(vbi_board_t *v, uint32_t from, uint32_t to, int invert)
 {
+    Hold h(v);
     int rc = v->b->pins().loop(from, to, invert != 0, v->b->now_ns(), v->err);
     return rc < 0 ? v->fail(rc, std::string(v->err)) : 0;
 }
 
 int vbi_probe(vbi_board_t *v, uint32_t first, uint32_t count, vb_pin *out)
 {
+    Hold h(v);
     v->pins.clear();
     int rc = v->b->pins().probe(first, count, v->b->now_ns(), v->pins, v->err);
     if (rc < 0)
@@ -246,13 +319,48 @@ int vbi_probe(vbi_board_t *v, uint32_t first, uint32_t count, vb_pin *out)
     return 0;
 }
 
-uint64_t vbi_now_ns(const vbi_board_t *v) { return v->b->now_ns(); }
+uint64_t vbi_now_ns(const vbi_board_t *cv)
+{
+    auto *v = const_cast<vbi_board_t *>(cv); // the lock, not the board, changes
+    Hold h(v);
+    return v->b->now_ns();
+}
 
-void vbi_stats_get(const vbi_board_t *v, vbi_stats *out) { *out = v->st; }
+void vbi_stats_get(const vbi_board_t *cv, vbi_stats *out)
+{
+    auto *v = const_cast<vbi_board_t *>(cv);
+    Hold h(v);
+    *out = v->st;
+}
+
+int vbi_freerun(vbi_board_t *v, int on)
+{
+    if (!on) {
+        stop_free(v);
+        Hold h(v);
+        v->have_epoch = false; // lockstep again: the next time re-takes the epoch
+        return 0;
+    }
+    if (v->runner.joinable())
+        return 0;
+    {
+        Hold h(v);
+        v->fr_wall0 = mono_ns();
+        v->fr_board0 = v->b->now_ns();
+        v->running = true;
+    }
+    try {
+        v->runner = std::thread(run_free, v);
+    } catch (const std::system_error &e) {
+        v->running = false;
+        return v->fail(-EAGAIN, std::string("cannot start the board thread: ") + e.what());
+    }
+    return 0;
+}
 
 const vbi_api_t kApi = {VBI_ABI,  vbi_open,   vbi_close, vbi_error,  vbi_hello,
                         vbi_read, vbi_write,  vbi_config, vbi_loop,  vbi_probe,
-                        vbi_now_ns, vbi_stats_get};
+                        vbi_now_ns, vbi_stats_get, vbi_freerun};
 
 } // namespace
 

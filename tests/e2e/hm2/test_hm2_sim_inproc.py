@@ -180,7 +180,11 @@ AFTER = "loadusr -w echo @@after\nshow comp\nshow pin\n"
             "loadrt hm2_sim inproc=1 socket=/tmp/x.sock board=5i20",
             "socket=/tmp/x.sock makes no sense with it",
         ),
-        ("loadrt hm2_sim inproc=2 board=5i20", "hm2_sim: inproc=2: want 0 or 1"),
+        ("loadrt hm2_sim inproc=2 board=5i20", "hm2_sim: inproc=2 freerun=0: want 0 or 1"),
+        (
+            "loadrt hm2_sim socket=/tmp/x.sock freerun=1",
+            "firmware=, loops= and freerun= are for in-process boards (inproc=1)",
+        ),
         ("loadrt hm2_sim inproc=1", "no board given"),
         (
             'loadrt hm2_sim inproc=1 board=5i20 config="firmware=hm2/5i20/missing.BIT"',
@@ -265,3 +269,25 @@ def test_stats_line(tmp_path: Path) -> None:
     assert int(m.group(1)) == 8  # 7 servo periods and hostmot2's transfer at load
     assert abs(calls - model - transport) <= 1 and 0 < model and 0 <= transport < calls
     assert float(m.group(5)) > 0 and float(m.group(6)) > 0
+
+
+def test_freerun_on_the_wall_clock(tmp_path: Path) -> None:
+    """freerun=1: the board runs on its own thread with the wall clock (as
+    vboard --freerun), so a wall-clock session works and the stepgen steps
+    while HAL only sleeps."""
+    sg = f"{PFX}.stepgen.00"
+    script = (
+        "loadrt hostmot2\n"
+        + inproc_loadline("freerun=1")
+        + f"\nloadrt threads name1=servo period1=1000000\naddf {PFX}.read servo\n"
+        f"addf {PFX}.write servo\nsetp {sg}.enable 1\nsetp {sg}.control-type 1\n"
+        f"setp {sg}.steplen 5000\nsetp {sg}.stepspace 5000\nsetp {sg}.position-scale 1000\n"
+        f"setp {sg}.maxaccel 0\nsetp {sg}.velocity-cmd 10\nstart\nloadusr -w sleep 0.6\n"
+        f"getp {sg}.counts\nloadusr -w sleep 0.3\ngetp {sg}.counts\ngetp {PFX}.io_error\nstop\n"
+    )
+    r = run_hal(tmp_path, script, simclock=False)
+    assert r.returncode == 0, r.stdout + r.stderr
+    words = r.stdout.split()
+    first, second, io_error = int(words[-3]), int(words[-2]), words[-1]
+    assert 0 < first < second, r.stdout  # the board's time moves with the wall clock
+    assert io_error == "FALSE"

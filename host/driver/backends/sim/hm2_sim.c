@@ -61,6 +61,9 @@ RTAPI_MP_INT(inproc, "1: run the boards inside this process (lib/libvboard_inpro
                      "talking to bin/vboard sockets");
 static char *firmware[NB];
 RTAPI_MP_ARRAY_STRING(firmware, NB, "inproc=1: built-in firmware of each board (SVST8_4, ...)");
+static int freerun = 0;
+RTAPI_MP_INT(freerun, "inproc=1: 1 runs each board free with the wall clock on a thread of its "
+                      "own (as vboard --freerun) instead of in lockstep with HAL");
 static int stats = 0;
 RTAPI_MP_INT(stats, "inproc=1: 1 prints, at unload, where each board's servo periods spent "
                     "their time (board model vs transport)");
@@ -159,12 +162,13 @@ static int setup_inproc(struct hs_slot *s, int i, int comp_id)
                                        "socket=%s makes no sense with it\n", sockets[i]);
         return -EINVAL;
     }
-    if (host_time && !rtapi_is_simclock()) {
+    if (host_time && !freerun && !rtapi_is_simclock()) {
         rtapi_print_msg(RTAPI_MSG_ERR,
                         "hm2_sim: in-process board %d runs in lockstep with HAL's clock but "
                         "this HAL session runs on the wall clock, so the board would fall "
                         "behind real time; run the session on the simulated clock (halrun -S) "
-                        "or load with host_time=0 (the board's clocks stand still)\n", i);
+                        "or load with freerun=1 (the board runs with the wall clock) or "
+                        "host_time=0 (its clocks stand still)\n", i);
         return -EINVAL;
     }
     int r = hm2_sim_inproc_setup(&s->ib, &lib, board[i], firmware[i], 0,
@@ -174,6 +178,8 @@ static int setup_inproc(struct hs_slot *s, int i, int comp_id)
     s->set_up = 1;
     s->ib.stats = stats != 0;
     if ((r = hm2_sim_inproc_loops(&s->ib, loops[i])))
+        return r;
+    if (freerun && (r = hm2_sim_inproc_freerun(&s->ib)))
         return r;
     int index = type_index((const struct hs_slot *)s - i, i, s->ib.hello.board);
     hm2_board_fill_llio(s->ib.info, index, &s->ib.llio);
@@ -185,10 +191,10 @@ static int setup_one(void *slots, int i, int comp_id)
     struct hs_slot *s = &((struct hs_slot *)slots)[i];
     if (inproc)
         return setup_inproc(s, i, comp_id);
-    if ((firmware[i] && firmware[i][0]) || (loops[i] && loops[i][0])) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: firmware= and loops= are for in-process "
-                                       "boards (inproc=1); a socket board takes them on the "
-                                       "vboard command line\n");
+    if ((firmware[i] && firmware[i][0]) || (loops[i] && loops[i][0]) || freerun) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: firmware=, loops= and freerun= are for "
+                                       "in-process boards (inproc=1); a socket board takes them "
+                                       "on the vboard command line\n");
         return -EINVAL;
     }
     /* the index depends on the board type, which only HELLO tells: set up
@@ -223,8 +229,9 @@ int rtapi_app_main(void)
         rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: spin_us=%d out of range (0..10000)\n", spin_us);
         return -EINVAL;
     }
-    if (inproc != 0 && inproc != 1) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: inproc=%d: want 0 or 1\n", inproc);
+    if ((inproc != 0 && inproc != 1) || (freerun != 0 && freerun != 1)) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_sim: inproc=%d freerun=%d: want 0 or 1\n", inproc,
+                        freerun);
         return -EINVAL;
     }
     if (inproc) {

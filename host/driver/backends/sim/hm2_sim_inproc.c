@@ -459,6 +459,16 @@ void hm2_sim_inproc_report(struct hm2_sim_inproc *ib)
            (double)rd / (double)periods, (double)wr / (double)periods);
 }
 
+int hm2_sim_inproc_freerun(struct hm2_sim_inproc *ib)
+{
+    pthread_mutex_lock(&ib->lock);
+    int r = ib->api->freerun(ib->vb, 1);
+    pthread_mutex_unlock(&ib->lock);
+    if (r)
+        IB_LOG(ib, HM2_ERR, "hm2_sim: freerun: %s", ib->api->error(ib->vb));
+    return r;
+}
+
 void hm2_sim_inproc_teardown(struct hm2_sim_inproc *ib)
 {
     if (ib->vb)

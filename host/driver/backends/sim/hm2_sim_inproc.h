@@ -82,6 +82,9 @@ int hm2_sim_inproc_loops(struct hm2_sim_inproc *ib, const char *spec);
  * board model (clock edges of the bus cycles and of the time advance), and
  * the rest (the transport: checks, copies, calls); words moved. */
 void hm2_sim_inproc_report(struct hm2_sim_inproc *ib);
+/* Run the board free with the wall clock on its own thread (vboard
+ * --freerun's rule).  0, or -errno after logging why. */
+int hm2_sim_inproc_freerun(struct hm2_sim_inproc *ib);
 void hm2_sim_inproc_teardown(struct hm2_sim_inproc *ib);
 
 #ifdef __cplusplus

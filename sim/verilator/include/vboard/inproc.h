@@ -17,10 +17,16 @@
  * non-zero time sets the epoch (board time continues where it is); later
  * calls first run the FPGA clocks up to host_time - epoch.  A jump of more
  * than 60 s fails with -ERANGE and re-takes the epoch at the next call.
+ * freerun(b, 1) instead runs the board on a thread of its own with the wall
+ * clock, as `vboard --freerun` does (host times are then ignored; a board
+ * slower than real time runs as fast as it can without trying to catch up
+ * more than 50 ms); freerun(b, 0) stops that thread.
  *
  * Errors return a negative errno; the message (what failed, on which board,
  * why) is then in error(b).  Nothing of a failed call is applied except the
- * time advance.  A board is used by one thread at a time (the caller locks).
+ * time advance.  Calls on one board are serialized by the library (its own
+ * board thread included); error(b) belongs to the thread that made the last
+ * failing call, so one caller thread per board (the caller locks).
  */
 #ifndef VBOARD_INPROC_H
 #define VBOARD_INPROC_H
@@ -34,7 +40,7 @@
 extern "C" {
 #endif
 
-#define VBI_ABI 1u
+#define VBI_ABI 2u
 #define VBI_ENTRY "vbi_get_api"
 #define VBI_LIBRARY "libvboard_inproc.so"
 
@@ -75,6 +81,8 @@ typedef struct vbi_api {
     int (*probe)(vbi_board_t *b, uint32_t first, uint32_t count, struct vb_pin *out);
     uint64_t (*now_ns)(const vbi_board_t *b);
     void (*stats)(const vbi_board_t *b, struct vbi_stats *out);
+    /* 1: run free with the wall clock on a board thread; 0: lockstep. */
+    int (*freerun)(vbi_board_t *b, int on);
 } vbi_api_t;
 
 typedef const vbi_api_t *(*vbi_get_api_fn)(void);
