@@ -31,7 +31,9 @@ LIB = BUILD / "lib" / "libvboard_inproc.so"
 LOOPS = [(48, 3, False), (49, 2, True), (0, 71, False)]
 
 
-def run_hal(tmp: Path, script: str, simclock: bool = True, env: dict[str, str] | None = None):
+def run_hal(
+    tmp: Path, script: str, simclock: bool = True, env: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
     f = tmp / f"t{uuid.uuid4().hex[:6]}.hal"
     f.write_text(script)
     e = dict(os.environ)
