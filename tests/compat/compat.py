@@ -49,7 +49,10 @@ DEFAULT_SETS = [
     "by_machine/smithy",
     "sim",
 ]
-VIRTUAL_BOARDS = {"5i20", "5i25", "7i43", "pluto"}
+# local-bus virtual boards, by the firmware directory their firmware is in
+# (hm2/<dir>/; the gate-size variants 5i22-1, 5i22-1.5, 3x20-1 are boards
+# of their own)
+VIRTUAL_BOARDS = {"5i20", "5i22-1", "5i22-1.5", "5i23", "5i25", "3x20-1", "4i65", "4i68"}
 RUN_NS = "100ms"
 ERROR_LINE = re.compile(r"^(?P<file>[^\s:][^:]*):(?P<line>\d+): (?P<msg>.*)$")
 
@@ -151,7 +154,7 @@ class Hardware:
     def _hm2_pci(self, args: list[str], action: halprep.Action) -> halprep.Action:
         config = next((a[7:] for a in args if a.startswith("config=")), "")
         m = re.search(r"firmware=hm2/([^/\s]+)/", config)
-        board = m.group(1).split("-")[0] if m else ""
+        board = m.group(1) if m else ""
         if board not in VIRTUAL_BOARDS:
             return halprep.Action("keep", why=f"no virtual board for '{board or 'unknown board'}'")
         sock = self.board(board)

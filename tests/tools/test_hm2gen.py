@@ -37,6 +37,10 @@ FIRMWARES = [
     ("7i43", "SVST4_4", "PIN_SVST4_4_48", set()),
     ("7i43", "SV8", "PIN_SV8_48", set()),
     ("5i25", "7I76x2", "PIN_7I76x2_34", set()),
+    # the same SVST8_4 pin file covers the other 72-pin boards
+    ("5i23", "SVST8_4", "PIN_SVST8_4_72", set()),
+    ("4i65", "SVST8_4", "PIN_SVST8_4_72", set()),
+    ("4i68", "SVST8_4", "PIN_SVST8_4_72", set()),
 ]
 
 # Spec section 16 board table (typed here independently of the board files).
@@ -60,6 +64,36 @@ BOARDS = {
         lo=50_000_000,
         hi=100_000_000,
         con=["P4", "P3"],
+    ),
+    "5i23": dict(
+        name="MESA5I23",
+        size=400,
+        pins=208,
+        ports=3,
+        pw=24,
+        lo=48_000_000,
+        hi=96_000_000,
+        con=["P2", "P3", "P4"],
+    ),
+    "4i65": dict(
+        name="MESA4I65",
+        size=200,
+        pins=208,
+        ports=3,
+        pw=24,
+        lo=33_333_333,
+        hi=100_000_000,
+        con=["P1", "P3", "P4"],
+    ),
+    "4i68": dict(
+        name="MESA4I68",
+        size=400,
+        pins=208,
+        ports=3,
+        pw=24,
+        lo=48_000_000,
+        hi=96_000_000,
+        con=["P1", "P2", "P4"],
     ),
     "5i25": dict(
         name="MESA5I25",
@@ -107,7 +141,9 @@ def generated(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, str],
     return docs
 
 
-@pytest.mark.parametrize("board,name,stem,omitted", FIRMWARES, ids=[f[1] for f in FIRMWARES])
+@pytest.mark.parametrize(
+    "board,name,stem,omitted", FIRMWARES, ids=[f"{f[0]}-{f[1]}" for f in FIRMWARES]
+)
 def test_idrom_matches_stock_csv(
     generated: dict[tuple[str, str], dict[str, Any]], board: str, name: str, stem: str, omitted: Any
 ) -> None:
@@ -228,7 +264,9 @@ def test_seed_dmesg_pins(generated: dict[tuple[str, str], dict[str, Any]]) -> No
     assert pins[2]["label"] == "P2-05" and pins[60]["label"] == "P4-25"
 
 
-@pytest.mark.parametrize("board,name,stem,omitted", FIRMWARES, ids=[f[1] for f in FIRMWARES])
+@pytest.mark.parametrize(
+    "board,name,stem,omitted", FIRMWARES, ids=[f"{f[0]}-{f[1]}" for f in FIRMWARES]
+)
 def test_outputs_agree(
     generated: dict[tuple[str, str], dict[str, Any]], board: str, name: str, stem: str, omitted: Any
 ) -> None:

@@ -288,7 +288,9 @@ class Firmware:
 
     @property
     def top_module(self) -> str:
-        return f"hm2_{self.board.name}_{self.name}".lower()
+        """Verilog/C++ name: board names such as 5i22-1.5 (Mesa's firmware
+        directory of a gate-size variant) become 5i22_1_5."""
+        return re.sub(r"[^a-z0-9_]", "_", f"hm2_{self.board.name}_{self.name}".lower())
 
     def idrom(self) -> list[int]:
         b = self.board

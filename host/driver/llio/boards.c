@@ -50,12 +50,29 @@ static const struct hm2_board_info boards[] = {
      pins_7i96, NPINS_7I96},
 };
 
-const struct hm2_board_info *hm2_board_lookup(const char *name)
+static const struct hm2_board_info *lookup_exact(const char *name)
 {
     for (size_t i = 0; i < sizeof(boards) / sizeof(boards[0]); i++)
         if (strcasecmp(boards[i].name, name) == 0)
             return &boards[i];
     return NULL;
+}
+
+/* Also Mesa's firmware-directory names of the gate-size variants:
+ * "5i22-1" is the 5i22-1.0M, "5i22-1.5" the 5i22-1.5M, "3x20-2" the
+ * 3x20-2.0M (a virtual board calls itself by the directory its firmware
+ * comes from). */
+const struct hm2_board_info *hm2_board_lookup(const char *name)
+{
+    const struct hm2_board_info *b = lookup_exact(name);
+    char alt[32];
+    if (b || !strchr(name, '-') || strlen(name) + 3 >= sizeof(alt))
+        return b;
+    snprintf(alt, sizeof(alt), "%sM", name);
+    if ((b = lookup_exact(alt)))
+        return b;
+    snprintf(alt, sizeof(alt), "%s.0M", name);
+    return lookup_exact(alt);
 }
 
 const struct hm2_board_info *hm2_board_at(int i)

@@ -533,6 +533,13 @@ static void test_pin_names(void)
     CHECK_EQ_STR(hm2_llio_pin_name(&l, 0, buf, sizeof(buf)), "TB3-01");
     CHECK(hm2_llio_pin_name(&l, 1, buf, sizeof(buf)) == NULL);
     CHECK(hm2_board_lookup("9x99") == NULL);
+    /* Mesa's firmware-directory names of the gate-size variants */
+    CHECK(hm2_board_lookup("5i22-1") == hm2_board_lookup("5i22-1.0M"));
+    CHECK(hm2_board_lookup("5i22-1.5") == hm2_board_lookup("5i22-1.5M"));
+    CHECK(hm2_board_lookup("3x20-2") == hm2_board_lookup("3x20-2.0M"));
+    CHECK_EQ_STR(hm2_board_lookup("3x20-1")->fpga_part, "3s1000fg456");
+    CHECK(hm2_board_lookup("5i22-2") == NULL);
+    CHECK(hm2_board_lookup("5i20-1") == NULL);
 }
 
 int main(void)

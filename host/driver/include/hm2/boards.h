@@ -30,7 +30,8 @@ struct hm2_board_info {
     int num_pin_names;
 };
 
-/* Case-insensitive lookup ("5i20", "7I43"); NULL if unknown. */
+/* Case-insensitive lookup ("5i20", "7I43"; a gate-size variant also by
+ * its firmware directory, "5i22-1.5" = "5i22-1.5M"); NULL if unknown. */
 const struct hm2_board_info *hm2_board_lookup(const char *name);
 /* NULL-terminated iteration. */
 const struct hm2_board_info *hm2_board_at(int i);
