@@ -2,7 +2,8 @@
 /*
  * jtag_cmd.c - hm2flash --jtag CABLE: the IDCODE scan of a JTAG chain and
  * volatile configuration of its Xilinx FPGA (JPROGRAM/CFG_IN/JSTART)
- * through an FTDI MPSSE cable over libusb or four GPIO lines (libgpiod).
+ * through an FTDI MPSSE cable over libusb or four GPIO lines (libgpiod, or
+ * a virtual board's JTAG port: sim:SOCKET).
  */
 #define _POSIX_C_SOURCE 200809L
 #include "jtag_cmd.h"
@@ -19,6 +20,7 @@
 #include "hm2/jtag_mpsse.h"
 #include "hm2/jtag_usb.h"
 #include "hm2/jtag_xilinx.h"
+#include "jtag_sim.h"
 
 #define JTAG_HZ 6000000u
 #define MAX_DEVICES 8
@@ -41,7 +43,10 @@ static int open_gpio(struct session *s, const char *cable)
     s->is_gpio = 1;
     struct jtag_gpio_lines lines;
     char err[256];
-    if (jtag_gpiod_lines_open(&lines, cable + 6, err, sizeof(err))) {
+    int r = strncmp(cable, "sim:", 4) == 0
+                ? jtag_sim_lines_open(&lines, cable + 4, err, sizeof(err))
+                : jtag_gpiod_lines_open(&lines, cable + 6, err, sizeof(err));
+    if (r) {
         fprintf(stderr, "hm2flash: jtag %s: %s\n", cable, err);
         return -1;
     }
@@ -58,7 +63,7 @@ static int open_gpio(struct session *s, const char *cable)
 
 static int open_chain(struct session *s, const char *cable)
 {
-    if (strncmp(cable, "gpiod:", 6) == 0)
+    if (strncmp(cable, "gpiod:", 6) == 0 || strncmp(cable, "sim:", 4) == 0)
         return open_gpio(s, cable);
     memset(s, 0, sizeof(*s));
     if (jtag_usb_open(&s->usb, cable)) {

@@ -16,7 +16,7 @@ foreach(top ${VB_LB_MODELS})
     endif()
 endforeach()
 add_library(vboard_inproc SHARED ${VB_INPROC_DIR}/vbi.cpp
-    src/localbus.cpp src/pins.cpp src/fwimage.cpp src/spiflash.cpp src/flashport.cpp
+    src/localbus.cpp src/pins.cpp src/fwimage.cpp src/spiflash.cpp src/flashport.cpp src/jtagtap.cpp
     src/vcd2fst.cpp)
 target_include_directories(vboard_inproc PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src
     ${CMAKE_CURRENT_SOURCE_DIR}/include ${VB_OUT}/fwinfo)

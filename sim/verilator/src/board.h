@@ -141,6 +141,15 @@ class Board {
         return -ENOTSUP;
     }
 
+    // ---- the FPGA's JTAG port (VB_JTAG) ---------------------------------------
+    // The lines TCK/TMS/TDI (bits 0..2) now; tdo: the TDO line.
+    virtual int jtag(uint32_t levels, uint32_t &tdo, std::string &err)
+    {
+        (void)levels, (void)tdo;
+        err = "board " + name() + " has no JTAG port model";
+        return -ENOTSUP;
+    }
+
     // ---- waveforms (VB_DUMP) -------------------------------------------------
     // on: open `path` (.vcd) and trace from now on; off: close the file.
     virtual int dump(bool on, const std::string &path, std::string &err)

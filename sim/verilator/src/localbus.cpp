@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 #include "fwimage.h"
@@ -337,6 +338,33 @@ std::vector<uint8_t> make_image(const FwInfo &fw)
     return v;
 }
 } // namespace
+
+int LocalBusBoard::jtag(uint32_t levels, uint32_t &tdo, std::string &err)
+{
+    if (!tap_) {
+        uint32_t id = xilinx_idcode(part_);
+        if (!id) {
+            err = "board " + board_ + " (" + part_ + ") has no JTAG port model";
+            return -ENOTSUP;
+        }
+        tap_ = std::make_unique<JtagTap>(
+            id,
+            [this](const std::vector<uint8_t> &bits) {
+                const LbEntry *e = nullptr;
+                std::string why;
+                if (match_image(bits.data(), bits.size(), e, why) < 0) {
+                    std::fprintf(stderr, "vboard: %s: JTAG configuration failed, board stays "
+                                         "blank: %s\n", board_.c_str(), why.c_str());
+                    return -EINVAL;
+                }
+                start(*e);
+                return 0;
+            },
+            [this] { unconfigure(); }, [this] { return fw_ != nullptr; });
+    }
+    tdo = static_cast<uint32_t>(tap_->lines(levels));
+    return 0;
+}
 
 int LocalBusBoard::attach_flash(const std::string &path, const std::string &part,
                                 uint32_t speedup, const std::string &firmware, std::string &err)

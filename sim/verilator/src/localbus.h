@@ -17,6 +17,7 @@
 
 #include "board.h"
 #include "flashport.h"
+#include "jtagtap.h"
 #include "fwinfo.h"
 #include "pins.h"
 
@@ -77,6 +78,7 @@ class LocalBusBoard final : public Board {
     int attach_flash(const std::string &path, const std::string &part, uint32_t speedup,
                      const std::string &firmware, std::string &err) override;
     bool flash_configured() const override;
+    int jtag(uint32_t levels, uint32_t &tdo, std::string &err) override;
 
   private:
     const LbEntry *find(const std::string &firmware) const;
@@ -99,6 +101,7 @@ class LocalBusBoard final : public Board {
     uint64_t now_ = 0; // board time while blank
     std::unique_ptr<SpiFlash> flash_;
     std::unique_ptr<FlashPort> port_;
+    std::unique_ptr<JtagTap> tap_;
 };
 
 std::unique_ptr<Board> make_localbus_board(const std::string &board);

@@ -50,6 +50,7 @@ const char *type_name(uint16_t t)
     case VB_DUMP: return "DUMP";
     case VB_PLANT: return "PLANT";
     case VB_SSERIAL: return "SSERIAL";
+    case VB_JTAG: return "JTAG";
     default: return "?";
     }
 }
@@ -354,6 +355,7 @@ Server::Reply Server::dispatch(Conn &c, const vb_header &h, const uint8_t *p, si
     case VB_DUMP: return r_dump(p, n);
     case VB_PLANT: return r_plant(p, n);
     case VB_SSERIAL: return r_sserial(p, n);
+    case VB_JTAG: return r_jtag(p, n);
     default: {
         char b[80];
         std::snprintf(b, sizeof b, "unknown request type 0x%02x", h.type);
@@ -637,6 +639,21 @@ Server::Reply Server::r_sserial(const uint8_t *p, size_t n)
     std::string reply, err;
     r.status = sserial_->command(cmd, board_.now_ns(), reply, err);
     r.data = r.status < 0 ? msg_bytes(err) : std::vector<uint8_t>(reply.begin(), reply.end());
+    return r;
+}
+
+Server::Reply Server::r_jtag(const uint8_t *p, size_t n)
+{
+    if (n != 4)
+        VB_FAIL(-EPROTO, "JTAG payload of " + std::to_string(n) + " bytes, want 4");
+    Reply r;
+    std::string err;
+    uint32_t tdo = 0;
+    r.status = board_.jtag(load<uint32_t>(p), tdo, err);
+    if (r.status < 0)
+        r.data = msg_bytes(err);
+    else
+        append(r.data, tdo);
     return r;
 }
 

@@ -104,6 +104,7 @@ class Server {
     Reply r_read(const uint8_t *p, size_t n);
     Reply r_write(const uint8_t *p, size_t n);
     Reply r_config(const uint8_t *p, size_t n);
+    Reply r_jtag(const uint8_t *p, size_t n);
     Reply r_time(const uint8_t *p, size_t n);
     Reply r_probe(const uint8_t *p, size_t n, bool reset);
     Reply r_drive(const uint8_t *p, size_t n);

@@ -113,6 +113,10 @@ enum vb_type {
     VB_SSERIAL = 0x71,     /* req: a text command (the whole payload):
                               "status", "set P.C KEY VALUE...";
                               rep: JSON text (docs/sserial.md) */
+    /* --- the FPGA's JTAG port (hm2flash --jtag sim:SOCKET) ------------------ */
+    VB_JTAG = 0x80,        /* req: u32 line levels (bit 0 TCK, 1 TMS, 2 TDI)
+                              on the FPGA's JTAG port; rep: u32 TDO (bit 0).
+                              -ENOTSUP on a board without one */
 };
 
 /* ---- VB_HELLO ----------------------------------------------------------- */
