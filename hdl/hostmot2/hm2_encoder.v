@@ -148,10 +148,13 @@ module hm2_encoder (
         if (!live_q) begin
             // not decoding until the filter is primed (see above)
         end else if (ctrl_q[C_UPDOWN]) begin
-            // up/down counter: A rising edge counts, B gives the direction
+            // up/down (step/dir) counter: A rising edge counts, B gives the
+            // direction.  B is taken as it was before the edge (prev_q), the
+            // level that was set up: a B change in the same filter sample as
+            // the A edge applies from the next step on.
             if (a && !prev_q[0]) begin
-                up = b;
-                down = !b;
+                up = prev_q[1];
+                down = !prev_q[1];
             end
         end else if (a_chg && b_chg) begin
             qerr_set = 1'b1;

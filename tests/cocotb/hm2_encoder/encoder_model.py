@@ -72,7 +72,8 @@ class EncoderModel:
             pass  # no decoding until the filter is primed from the pins
         elif bit(ctrl, CCR_UPDOWN):
             if a and not pa:
-                up, down = bool(b), not b
+                # direction = B before the edge (the level set up for it)
+                up, down = bool(pb), not pb
         else:
             da, db = a != pa, b != pb
             if da and db:

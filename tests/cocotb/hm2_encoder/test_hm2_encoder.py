@@ -364,6 +364,25 @@ async def quad_error_and_updown(dut: Any) -> None:
     await h.wait(10)
     assert s16(await h.read(R_COUNT, 0)) == 5 - 8
     assert not await h.read(R_CCR, 0) & (1 << CCR_QERR)
+    # B changing in the same instant as A rises: the step counts with the
+    # direction set up before it (B = 1: up), the new B from the next step
+    # (spec §20 "up/down count mode": this is the case where two readings of
+    # "B gives the direction" differ)
+    await h.write(R_COUNT, 0, 0)
+    b.value = 0
+    await Timer(300, unit="ns")
+    for new_b in (1, 1, 1):
+        h.vecs[0].shadow = (h.vecs[0].shadow & ~1) | 1
+        h.vecs[1].shadow = (h.vecs[1].shadow & ~1) | new_b
+        d = h.dut
+        d.enc_a.value, d.enc_b.value = h.vecs[0].shadow, h.vecs[1].shadow
+        await Timer(300, unit="ns")
+        a.value = 0
+        await Timer(300, unit="ns")
+    await h.wait(10)
+    # B 0 -> 1 with the first step (down), then B = 1 (up, up): 1; taking the
+    # B after the edge would count 3 -- the 1-vs-3 difference of issue 13
+    assert s16(await h.read(R_COUNT, 0)) == -1 + 1 + 1
     h.replay(qfilter_reset(dut))
 
 

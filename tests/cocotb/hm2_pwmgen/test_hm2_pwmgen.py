@@ -317,6 +317,70 @@ async def double_buffer(dut: Any) -> None:
     h.check()
 
 
+def _pulses(h: Harness, inst: int) -> list[tuple[float, float, int]]:
+    """(rise, fall, pin) of every pulse on Out0/Out1 of an instance; asserts
+    the two pins are never high together."""
+    edges = sorted(
+        [(t, v, 0) for t, v in h.trace("pwm_out0", inst).changes]
+        + [(t, v, 1) for t, v in h.trace("pwm_out1", inst).changes]
+    )
+    out: list[tuple[float, float, int]] = []
+    high: dict[int, float] = {}
+    for t, v, pin in edges:
+        if v:
+            assert not high, f"Out0 and Out1 high together at {t}"
+            high[pin] = t
+        else:
+            out.append((high.pop(pin), t, pin))
+    return out
+
+
+@cocotb.test()
+async def updown_level_changes(dut: Any) -> None:
+    """Output mode 2 (up/down) as the driver sets it for output-type 2
+    (double buffered): whatever the value and sign writes mid-period, every
+    PWM period has exactly one pulse on one pin, i.e. two level changes,
+    starting at the period start; it moves to the other pin only at a period
+    start.  Without double buffering a sign change mid-period splits a
+    period's pulse over both pins (more level changes for the same duty):
+    spec §20 "PWMGen output mode 2 edge count"."""
+    h = Harness(dut)
+    await h.start()
+    await h.write(R_PWMRATE, 0, 0xFFFF)
+    await h.write(R_MODE, 0, 0x20 | (2 << 3))  # 9 bit, up/down, double buffered
+    await h.write(R_MODE, 1, 2 << 3)  # 9 bit, up/down, immediate
+    clocks = 512 * 65536 / 0xFFFF
+    per = clocks * PERIOD_HIGH
+    seq = [(1, 300), (0, 300), (1, 120), (0, 400), (0, 60), (1, 450), (0, 250), (1, 250)]
+    for dirn, v in seq:
+        await h.write(R_VAL, 0, reg_value(dirn, v))
+        await h.write(R_VAL, 1, reg_value(dirn, v))
+        await h.wait_ns(per * 1.37)
+    await h.wait_ns(2 * per)
+    h.check()
+    widths = {round(v * 65536 / 0xFFFF) for _, v in seq}
+    p0 = _pulses(h, 0)
+    assert len(p0) >= len(seq)
+    rises = [r for r, _, _ in p0]
+    for a, b in zip(rises, rises[1:]):
+        n = (b - a) / per
+        assert abs(n - round(n)) * clocks <= 1.01 and round(n) >= 1, (a, b, n)
+    for r, f, pin in p0:
+        assert min(abs((f - r) / PERIOD_HIGH - w) for w in widths) <= 1, (r, f, pin)
+    # the pin follows DIR: Out0 for DIR = 1, Out1 for DIR = 0, in write order
+    pins = [pin for _, _, pin in p0]
+    runs = [pins[0]] + [b for a, b in zip(pins, pins[1:]) if a != b]
+    want = [1 - d for d, _ in seq]
+    want = [want[0]] + [b for a, b in zip(want, want[1:]) if a != b]
+    assert runs == want, (runs, want)
+    # immediate: some period's pulse ends on one pin and continues on the other
+    p1 = _pulses(h, 1)
+    split = [
+        (a, b) for a, b in zip(p1, p1[1:]) if a[2] != b[2] and abs(b[0] - a[1]) < 1.5 * PERIOD_HIGH
+    ]
+    assert split, p1
+
+
 @cocotb.test()
 async def linuxcnc_driver_use(dut: Any) -> None:
     """As the 2.9 driver programs it (spec §10.3) at ClockHigh = 100 MHz:
