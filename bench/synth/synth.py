@@ -8,7 +8,9 @@
   clock domains, if nextpnr-ice40 is installed.
 
 No Mesa figure is published for the iCE40, so there is no anchor: these are
-the project's own numbers to watch for regressions."""
+the project's own numbers to watch for regressions.  ``baseline.json`` holds
+the figures of an earlier commit (``--save-baseline`` writes it); each
+module's line shows them beside the current ones."""
 
 from __future__ import annotations
 
@@ -96,7 +98,10 @@ def family(name: str) -> str:
     return m.group(1) if m else name
 
 
-def report_top(desc: Path, work: Path) -> None:
+BASELINE = Path(__file__).resolve().parent / "baseline.json"
+
+
+def report_top(desc: Path, work: Path, prev: dict[str, list[int]]) -> dict[str, list[int]]:
     netlist, top, _ = synth(desc, work)
     own, count = per_module(netlist, top)
     rows: dict[str, list[int]] = {}
@@ -109,13 +114,25 @@ def report_top(desc: Path, work: Path) -> None:
         r[1] += n * own[name][0]
         r[2] += n * own[name][1]
     print(f"{top}: yosys synth_ice40 -noflatten (LUT4 / FF, summed over instances)")
-    print(f"  {'module':<22} {'inst':>4} {'LUT4':>6} {'FF':>6}")
-    tl = tf = 0
+    print(f"  {'module':<22} {'inst':>4} {'LUT4':>6} {'FF':>6}   {'previous LUT4':>13} {'FF':>6}")
+    tl = tf = pl = pf = 0
+
+    def was(f: str) -> tuple[str, str]:
+        if f not in prev:
+            return "-", "-"
+        return str(prev[f][1]), str(prev[f][2])
+
     for f, (n, lu, ff) in sorted(rows.items(), key=lambda kv: -kv[1][1]):
-        print(f"  {f:<22} {n:>4} {lu:>6} {ff:>6}")
+        pl_s, pf_s = was(f)
+        print(f"  {f:<22} {n:>4} {lu:>6} {ff:>6}   {pl_s:>13} {pf_s:>6}")
         tl += lu
         tf += ff
-    print(f"  {'total':<22} {'':>4} {tl:>6} {tf:>6}")
+    for f in prev:
+        pl += prev[f][1]
+        pf += prev[f][2]
+    ptot = (str(pl), str(pf)) if prev else ("-", "-")
+    print(f"  {'total':<22} {'':>4} {tl:>6} {tf:>6}   {ptot[0]:>13} {ptot[1]:>6}")
+    return {f: list(r) for f, r in rows.items()}
 
 
 def fmax_slice(work: Path) -> None:
@@ -160,16 +177,33 @@ def fmax_slice(work: Path) -> None:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--keep", type=Path, help="keep the work files in this directory")
+    ap.add_argument(
+        "--save-baseline",
+        metavar="LABEL",
+        help="write this run's figures to baseline.json, labelled (e.g. a commit)",
+    )
+    ap.add_argument("--no-fmax", action="store_true", help="skip the nextpnr slice")
     args = ap.parse_args()
+    base = json.loads(BASELINE.read_text()) if BASELINE.exists() else {"label": "", "tops": {}}
+    if base["label"]:
+        print(f"previous figures: {base['label']} (bench/synth/baseline.json)")
+    figures: dict[str, dict[str, list[int]]] = {}
     if not shutil.which("yosys"):
         raise SystemExit("bench/synth: yosys is required (apt-get install yosys)")
     with tempfile.TemporaryDirectory() as tmp:
         work = args.keep or Path(tmp)
         work.mkdir(parents=True, exist_ok=True)
         for board, name in TOPS:
-            report_top(HM2 / "firmware" / board / f"{name}.toml", work)
+            desc = HM2 / "firmware" / board / f"{name}.toml"
+            key = f"{board}/{name}"
+            figures[key] = report_top(desc, work, base["tops"].get(key, {}))
             print()
-        fmax_slice(work)
+        if not args.no_fmax:
+            fmax_slice(work)
+    if args.save_baseline:
+        BASELINE.write_text(
+            json.dumps({"label": args.save_baseline, "tops": figures}, indent=1) + "\n"
+        )
     return 0
 
 
