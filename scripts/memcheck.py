@@ -16,6 +16,8 @@
    valgrind: halrun finds halcmd next to itself, so a copy of halrun sits in
    a private bin/ beside a halcmd wrapper, and HAL_RTAPI_APP names an
    rtapi_app wrapper.
+4. The same session with the board inside rtapi_app (hm2_sim inproc=1,
+   lib/libvboard_inproc.so, 10 ms), rtapi_app under valgrind.
 
 Errors and leaks (definite and indirect) fail the run; the logs stay in
 BUILD/memcheck/.  Suppressions: scripts/valgrind.supp, each with the reason
@@ -26,6 +28,7 @@ not mix): the Makefile runs it on build/.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import re
@@ -136,18 +139,22 @@ def wrapper(path: Path, target: Path, logs: Path, tag: str) -> None:
     path.chmod(0o755)
 
 
-def run_session(build: Path, out: Path) -> list[str]:
+def run_session(build: Path, out: Path, inproc: bool = False) -> list[str]:
     sys.path.insert(0, str(ROOT / "tests" / "common"))
     import vboard  # noqa: PLC0415
 
-    work = out / "session"
+    tag = "inproc" if inproc else "session"
+    work = out / tag
     bindir = work / "bin"
     bindir.mkdir(parents=True)
     shutil.copy(build / "bin" / "halrun", bindir / "halrun")
-    wrapper(bindir / "halcmd", build / "bin" / "halcmd", out, "session-halcmd")
-    wrapper(bindir / "rtapi_app", build / "bin" / "rtapi_app", out, "session-rtapi_app")
+    wrapper(bindir / "halcmd", build / "bin" / "halcmd", out, f"{tag}-halcmd")
+    wrapper(bindir / "rtapi_app", build / "bin" / "rtapi_app", out, f"{tag}-rtapi_app")
     sock = Path("/tmp") / f"mc{uuid.uuid4().hex[:8]}.sock"
-    (work / "session.hal").write_text(SESSION.format(sock=sock))
+    hal = SESSION.format(sock=sock)
+    if inproc:
+        hal = hal.replace(f"socket={sock}", "inproc=1").replace("simrun 20ms", "simrun 10ms")
+    (work / "session.hal").write_text(hal)
     env = dict(os.environ)
     env.pop("HAL_SIMCLOCK", None)
     env.update(
@@ -158,7 +165,8 @@ def run_session(build: Path, out: Path) -> list[str]:
     )
     start = time.monotonic()
     # The file goes in on stdin (the core session reads its file with -f).
-    with vboard.VBoardProcess(sock, "5i20"), open(work / "session.hal") as hal:
+    board = contextlib.nullcontext() if inproc else vboard.VBoardProcess(sock, "5i20")
+    with board, open(work / "session.hal") as hal:
         r = subprocess.run(
             [str(bindir / "halrun"), "-S"],
             stdin=hal,
@@ -172,16 +180,17 @@ def run_session(build: Path, out: Path) -> list[str]:
     failed = []
     if r.returncode != 0:
         failed.append(f"HAL session: halrun exit {r.returncode} (output {work / 'halrun.out'})")
-    logs = sorted(out.glob("session-*.log"))
+    logs = sorted(out.glob(f"{tag}-*.log"))
     for kind in ("halcmd", "rtapi_app"):
-        if not any(p.name.startswith(f"session-{kind}.") for p in logs):
+        if not any(p.name.startswith(f"{tag}-{kind}.") for p in logs):
             failed.append(f"HAL session: no valgrind log of {kind}: it did not run under valgrind")
     for log in logs:
         n = errors_in(log)
         if n != 0:
             failed.append(f"HAL session: {n} valgrind errors in {log}")
+    name = "hostmot2 + hm2_sim inproc=1" if inproc else "hostmot2 + hm2_sim session"
     print(
-        f"  hostmot2 + hm2_sim session     {'ok' if not failed else 'FAILED':<7s}"
+        f"  {name:<30s} {'ok' if not failed else 'FAILED':<7s}"
         f" {len(logs)} processes  {time.monotonic() - start:6.1f} s"
     )
     if "hm2_5i20.0: initialized virtual AnyIO board" not in r.stdout + r.stderr:
@@ -288,6 +297,8 @@ def main() -> int:
     failed += run_core_session(build, out)
     print("memcheck: a HAL session with hostmot2 + hm2_sim under valgrind")
     failed += run_session(build, out)
+    print("memcheck: the same with the board inside rtapi_app (hm2_sim inproc=1) under valgrind")
+    failed += run_session(build, out, inproc=True)
     for f in failed:
         print(f"  FAIL: {f}")
     took = time.monotonic() - start
