@@ -137,6 +137,11 @@ static int car_code(int i)
 EXTRA_SETUP()
 {
     inst_pockets = car_mp(pockets, extra_arg, 1);
+    if (inst_pockets < 1) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "carousel: %s: pockets=%d: needs at least 1 pocket\n", prefix,
+                        inst_pockets);
+        return -EINVAL;
+    }
     inst_code = car_code(extra_arg);
     inst_dir = car_mp(dir, extra_arg, 2);
     inst_parity = car_mp(parity, extra_arg, 0);
@@ -226,13 +231,14 @@ static void car_position(struct __comp_state *__comp_inst)
         }
         old_index = index_enable;
         if (homed && scale != 0) {
-            int c = counts - base_counts - home_offset;
-            int m = ((c % scale) + scale) % scale;
-            int pocket = (c - m) / scale;
-            if (m <= width || m >= scale - width || width == 0) {
-                if (width != 0 && m >= scale - width)
+            long long sc = scale;
+            long long c = (long long)counts - base_counts - home_offset;
+            long long m = ((c % sc) + sc) % sc;
+            long long pocket = (c - m) / sc;
+            if (m <= width || m >= sc - width || width == 0) {
+                if (width != 0 && m >= sc - width)
                     pocket++;
-                current_position = ((pocket % inst_pockets) + inst_pockets) % inst_pockets + 1;
+                current_position = (int)(((pocket % inst_pockets) + inst_pockets) % inst_pockets + 1);
             }
         }
         break;
