@@ -98,9 +98,13 @@ KINEMATICS = {
 }  # fmt: skip
 IOCONTROL_PROGRAMS = {"io", "iov2", "iocontrol", "iocontrolv2", "hal_manualtoolchange"}
 HALUI_PROGRAMS = {"halui"}
-# Programs that drive a USB pendant this project has no virtual device for
-# (LinuxCNC's xhc-hb04 waits for its USB device before it becomes ready).
+# Programs that drive a USB pendant this project has no virtual device for.
+# LinuxCNC's xhc-hb04 fails or waits for its USB device, so the result would
+# depend on the machine; the line is rewritten to a program that does not
+# exist, so it fails at once, as with no pendant attached (LinuxCNC's
+# xhc-hb04.tcl then goes on without the pendant).
 PENDANT_PROGRAMS = {"xhc-hb04"}
+PENDANT_ABSENT = "xhc-hb04-not-attached"
 GUI_PROGRAMS = {
     "pyvcp", "gladevcp", "axis", "touchy", "gmoccapy", "qtvcp", "gscreen", "halscope",
     "halmeter", "halshow", "vismach", "panelui",
@@ -314,7 +318,11 @@ def classify(line: str, ini: Ini, ctx: Context) -> Action:
         elif prog in HALUI_PROGRAMS:
             part = "halui"
         elif prog in PENDANT_PROGRAMS:
-            part = "pendant"
+            for n in {prog, name or prog}:
+                ctx.prefixes[n + "."] = "pendant"
+            return Action(
+                "rewrite", "pendant", "no USB pendant attached", f"loadusr -W {PENDANT_ABSENT}"
+            )
         elif prog in GUI_PROGRAMS or prog.endswith("gui"):
             part = "GUI"
         if part:

@@ -75,7 +75,6 @@ def test_ini() -> None:
         ("loadusr -W xyzab-tdr-gui", "GUI"),
         ("net tc iocontrol.0.tool-change => hal_manualtoolchange.change", "iocontrol"),
         ("setp gantrykins.joint-0 0", "kinematics"),
-        ("loadusr -W xhc-hb04 -x -I xhc.ini -H", "pendant"),
     ],
 )
 def test_removed(line: str, part: str) -> None:
@@ -244,11 +243,13 @@ def test_kinematics_line_with_missing_ini_value() -> None:
     assert act("loadrt [NOPE]OTHER").kind == "keep"
 
 
-def test_pendant_objects_removed() -> None:
-    """After LinuxCNC's xhc-hb04 pendant program is removed, the lines that
-    name its pins go too; other lines stay."""
+def test_pendant_absent() -> None:
+    """LinuxCNC's xhc-hb04 pendant program is made to fail at once (no
+    pendant attached); the lines that name its pins are removed, other
+    lines stay."""
     ctx = hp.Context()
-    assert act("loadusr -W xhc-hb04 -x -I xhc.ini -H", ctx).part == "pendant"
+    a = act("loadusr -W xhc-hb04 -x -I xhc.ini -H", ctx)
+    assert (a.kind, a.part, a.text) == ("rewrite", "pendant", "loadusr -W xhc-hb04-not-attached")
     assert act("setp xhc-hb04.inch-icon 1", ctx).part == "pendant"
     a = act("net pendant:jog-x xhc-hb04.jog.scale => halui.axis.jog-speed", ctx)
     assert (a.kind, a.part) == ("remove", "halui/pendant")
