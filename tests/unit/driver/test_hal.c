@@ -416,6 +416,21 @@ static void test_encoder(void)
     for (int i = 0; i < lg.n; i++)
         msgs += strcmp(lg.line[i], "hm2/" PFX ": Encoder 1: quadrature count error") == 0;
     CHECK_EQ_INT(msgs, 1);
+    /* an error latched while reporting was off is stale: not reported on the
+     * read before the write that clears it when quad-error-enable rises */
+    *fake_bit(PFX ".encoder.01.quad-error-enable") = 0;
+    fake_run(PFX ".write", PERIOD);
+    hm2_image_put32(&im, 0x3104, 0x8000u);
+    fake_run(PFX ".read", PERIOD);
+    CHECK_EQ_INT(*fake_bit(PFX ".encoder.01.quad-error"), 0);
+    *fake_bit(PFX ".encoder.01.quad-error-enable") = 1;
+    fake_run(PFX ".read", PERIOD);
+    CHECK_EQ_INT(*fake_bit(PFX ".encoder.01.quad-error"), 0);
+    fake_run(PFX ".write", PERIOD);
+    CHECK(reg(0x3104) & 0x8000u); /* the clear (write 1) went out */
+    for (int i = msgs = 0; i < lg.n; i++)
+        msgs += strcmp(lg.line[i], "hm2/" PFX ": Encoder 1: quadrature count error") == 0;
+    CHECK_EQ_INT(msgs, 1);
     /* sample frequency and hires timestamp */
     *fake_u32(PFX ".encoder.sample-frequency") = 1000000;
     *fake_bit(PFX ".encoder.hires-timestamp") = 1;
@@ -423,6 +438,47 @@ static void test_encoder(void)
     CHECK_EQ_INT(reg(0x3400), 33 - 2);
     CHECK_EQ_INT(*fake_u32(PFX ".encoder.sample-frequency"), 33333333 / 33);
     CHECK_EQ_INT(reg(0x3200), 3 - 2);
+    hm2_unregister_board(&im.llio);
+}
+
+/* QCount version 0x83 (probe-capable): probe-enable/probe-invert exist, go
+ * into CCR bits 13/12 with JustOnce, and a CCR read with bit 13 cleared is
+ * the latch: count-latched and position-latched, probe-enable back to 0 */
+static void test_encoder_probe(void)
+{
+    fake_hal_reset();
+    t_setup_5i20(&im);
+    im.on_write = on_write;
+    wlog_n = 0;
+    for (uint32_t a = 0x440; a < 0x5C0; a += 12) {
+        uint32_t w0 = reg(a);
+        if ((w0 & 0xFFu) == 4u)
+            hm2_image_put32(&im, a, (w0 & ~0xFF00u) | 0x8300u);
+    }
+    CHECK_EQ_INT(do_register("num_encoders=1"), 0);
+    CHECK(fake_hal_find(PFX ".encoder.00.probe-enable") != NULL);
+    CHECK(fake_hal_find(PFX ".encoder.00.probe-invert") != NULL);
+    enc_set(0, 0, 0);
+    hm2_image_put32(&im, 0x3100, 0);
+    fake_run(PFX ".read", PERIOD);
+    *fake_float(PFX ".encoder.00.scale") = 10.0;
+    *fake_bit(PFX ".encoder.00.probe-enable") = 1;
+    *fake_bit(PFX ".encoder.00.probe-invert") = 1;
+    fake_run(PFX ".write", PERIOD);
+    uint32_t armed = (1u << 13) | (1u << 12) | (1u << 11) | (1u << 6);
+    CHECK_EQ_INT(reg(0x3100), armed);
+    enc_set(0, 12, 50);
+    fake_run(PFX ".read", PERIOD);
+    CHECK_EQ_INT(*fake_bit(PFX ".encoder.00.probe-enable"), 1); /* bit 13 still set */
+    hm2_image_put32(&im, 0x3100, (30u << 16) | (armed & ~(1u << 13)));
+    enc_set(0, 40, 90);
+    fake_run(PFX ".read", PERIOD);
+    CHECK_EQ_INT(*fake_bit(PFX ".encoder.00.probe-enable"), 0);
+    CHECK_EQ_INT(*fake_s32(PFX ".encoder.00.count-latched"), 30);
+    CHECK_NEAR(*fake_float(PFX ".encoder.00.position-latched"), 3.0, 1e-12);
+    CHECK_EQ_INT(*fake_s32(PFX ".encoder.00.count"), 40);
+    fake_run(PFX ".write", PERIOD);
+    CHECK_EQ_INT(reg(0x3100) & 0xFFFFu, (1u << 12) | (1u << 11));
     hm2_unregister_board(&im.llio);
 }
 
@@ -656,6 +712,7 @@ int main(void)
     RUN(test_watchdog_bite);
     RUN(test_io_error);
     RUN(test_encoder);
+    RUN(test_encoder_probe);
     RUN(test_stepgen);
     RUN(test_pwmgen);
     RUN(test_led_raw_queued);
