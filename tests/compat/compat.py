@@ -143,6 +143,11 @@ class Hardware:
             sock = self.board("7i43-2" if small else "7i43")
             keep = [a for a in args if not a.startswith(("ioaddr", "port="))]
             return _rewrite(["loadrt", "hm2_7i43", f"port=sim:{sock}", *keep], "7i43 on vboard")
+        if mod == "hm2_7i90":
+            # the 7i90 runs the firmware of its flash (the virtual one SVST8_4)
+            sock = self.board("7i90")
+            keep = [a for a in args if not a.startswith(("ioaddr", "port="))]
+            return _rewrite(["loadrt", "hm2_7i90", f"port=sim:{sock}", *keep], "7i90 on vboard")
         if mod in ("pluto_servo", "pluto_step"):
             sock = self.board("pluto")
             keep = [a for a in args if not a.startswith(("ioaddr", "port="))]

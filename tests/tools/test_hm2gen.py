@@ -462,6 +462,52 @@ def test_bad_description(tmp_path: Path, old: str, new: str, msg: str) -> None:
     assert str(tmp_path) in str(e.value) or "9z99" in str(e.value)
 
 
+def test_based_on(tmp_path: Path) -> None:
+    """The 200K 7i43's descriptions: the 7i43's firmware, their board's
+    FPGASize (spec section 16: 200 / 400) and part, everything else equal."""
+    for name in ("SVST4_4", "SV8", "SVST2_4_7I47"):
+        big = load_firmware(fw_path("7i43", name))
+        small = load_firmware(fw_path("7i43-2", name))
+        assert (small.board.name, small.board.fpga_part) == ("7i43-2", "3s200tq144")
+        assert small.top_module == f"hm2_7i43_2_{name.lower()}"
+        a, b = big.idrom(), small.idrom()
+        assert (a[5], b[5]) == (400, 200)
+        assert a[:5] + a[6:] == b[:5] + b[6:]
+        assert small.alt_src() == big.alt_src() and small.encoder_src() == big.encoder_src()
+
+
+BASED_BAD = [
+    ('board = "5i25"\n', "must name its board"),
+    ('board = "5i25"\nports = []\n', "unknown key(s) in a description with based_on: ports"),
+    ('board = "5i25"\n', "is itself based on another description"),
+    ('board = "5i25"\nidrom_type = 2\n', "unknown key(s) in a description with based_on"),
+]
+
+
+@pytest.mark.parametrize("extra,msg", BASED_BAD, ids=[b[1] for b in BASED_BAD])
+def test_based_on_bad(tmp_path: Path, extra: str, msg: str) -> None:
+    base = _write(tmp_path, GOOD)
+    text = 'based_on = "T.toml"\n' + extra
+    if "itself" in msg:  # based on U, which is based on T
+        (base.parent / "U.toml").write_text(text)
+        text = 'based_on = "U.toml"\n' + extra
+    if msg == "must name its board":
+        text = 'based_on = "T.toml"\n'
+    derived = base.parent / "D.toml"
+    derived.write_text(text)
+    with pytest.raises(DescriptionError) as e:
+        load_firmware(derived, HM2 / "boards")
+    assert msg in str(e.value)
+    assert str(tmp_path) in str(e.value)
+
+
+def test_based_on_missing_file(tmp_path: Path) -> None:
+    d = tmp_path / "D.toml"
+    d.write_text('based_on = "nothere.toml"\nboard = "5i25"\n')
+    with pytest.raises(DescriptionError, match="nothere.toml: file not found"):
+        load_firmware(d, HM2 / "boards")
+
+
 def test_too_many_pins_on_board(tmp_path: Path) -> None:
     boards = tmp_path / "boards"
     boards.mkdir()

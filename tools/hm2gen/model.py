@@ -395,7 +395,9 @@ class Firmware:
         return src
 
 
-_FW_KEYS = {"name", "board", "idrom_type", "modules", "ports", "notes"}
+_FW_KEYS = {"name", "board", "idrom_type", "modules", "ports", "notes", "based_on"}
+# keys a description based on another one may set (the rest comes from it)
+_BASED_KEYS = {"based_on", "board", "notes"}
 _MOD_KEYS = {"type", "instances", "version"}
 _PIN_RE = re.compile(r"^\s*(\w+)\s+(\d+|all)\s+(\w+)\s*$")
 
@@ -421,6 +423,29 @@ def _parse_pin(text: str, src: str, io: int) -> tuple[str, int, str] | None:
     return mod, unit, sig
 
 
+def based_on_path(path: Path, d: dict[str, Any]) -> Path:
+    """The description a ``based_on`` key names (relative to the file)."""
+    rel = _get(d, "based_on", str, str(path))
+    return (Path(path).parent / rel).resolve()
+
+
+def _based_on(path: Path, d: dict[str, Any]) -> dict[str, Any]:
+    """The same firmware for another board of the same geometry (the 200K
+    7i43): the named description with this file's board (and notes)."""
+    src = str(path)
+    _check_keys(d, _BASED_KEYS, src, "a description with based_on")
+    if "board" not in d:
+        raise _err(src, "a description with based_on must name its board")
+    base_path = based_on_path(path, d)
+    base = _load_toml(base_path)
+    _check_keys(base, _FW_KEYS, str(base_path), "firmware")
+    if "based_on" in base:
+        raise _err(src, f"{base_path} is itself based on another description (one level only)")
+    merged = {k: v for k, v in base.items()}
+    merged.update({k: v for k, v in d.items() if k != "based_on"})
+    return merged
+
+
 def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
     """Load ``path`` (a firmware TOML) and its board from ``boards_dir``
     (default: ../../boards relative to the firmware file)."""
@@ -428,6 +453,8 @@ def load_firmware(path: Path, boards_dir: Path | None = None) -> Firmware:
     src = str(path)
     d = _load_toml(path)
     _check_keys(d, _FW_KEYS, src, "firmware")
+    if "based_on" in d:
+        d = _based_on(path, d)
     name = _get(d, "name", str, src)
     if not NAME_RE.match(name):
         raise _err(src, f"firmware name {name!r} may contain only letters, digits and '_'")

@@ -43,6 +43,9 @@ static const struct hm2_board_info boards[] = {
      100000000, 0, NULL, 0},
     {"7i43", {"P4", "P3"}, 2, 24, "3s400tq144", 8, 0, 1, 50000000, 100000000, 0, NULL, 0},
     {"7i43-200", {"P4", "P3"}, 2, 24, "3s200tq144", 8, 0, 1, 50000000, 100000000, 0, NULL, 0},
+    /* 7i90: EPP, firmware in its own flash; not in spec §16, clocks as the
+     * Spartan-6 7i92's (unconfirmed) */
+    {"7i90", {"P1", "P2", "P3"}, 3, 24, "6slx9tqg144", 2, 0, 0, 100000000, 200000000, 0, NULL, 0},
     {"7i92", {"P2", "P1"}, 2, 17, "6slx9tqg144", 4, 0, 0, 100000000, 200000000, 1, NULL, 0},
     {"7i96", {"TB3", "TB1", "P1"}, 3, 17, "6slx9tqg144", 4, 0, 0, 100000000, 200000000, 1,
      pins_7i96, NPINS_7I96},

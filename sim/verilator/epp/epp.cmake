@@ -3,7 +3,7 @@
 # EPP boards of the virtual board (included by sim/verilator/CMakeLists.txt):
 # the Pluto-P with the Verilated pluto_servo and pluto_step firmwares
 # (pluto_board.cpp) and their firmware files $HM_FIRMWARE_DIR/<fw>.rbf, and
-# the 7i43 with the Verilated hm2 EPP firmwares (hm2_epp_board.cpp; their
+# the 7i43 and the 7i90 with the Verilated hm2 EPP firmwares (hm2_epp_board.cpp; their
 # .BIT files and fwinfo headers come from the main CMakeLists).  Both are
 # EppFpgaBoards (epp_fpga_board.cpp: a Verilated firmware behind the port of
 # epp_port_board.cpp).
@@ -26,32 +26,46 @@ foreach(fw pluto_servo pluto_step)
     list(APPEND VB_PLUTO_RBF ${rbf})
 endforeach()
 add_custom_target(vboard_pluto_firmware ALL DEPENDS ${VB_PLUTO_RBF})
+# The 7i43 firmwares, for both sizes: hm2/7i43/ (400K) and hm2/7i43-2/ (the
+# 200K part, 3s200tq144; descriptions based on the 7i43's, their IDROM says
+# FPGASize 200; images for `vboard --board 7i43-2`).  The main CMakeLists
+# writes both directories' .BIT files and fwinfo headers.
 set(VB_7I43_SIZED_BITS "")
-foreach(fw svst4_4 sv8)
+foreach(fw svst4_4 sv8 svst2_4_7i47)
     string(TOUPPER ${fw} FW)
-    set(top hm2_7i43_${fw})
+    foreach(board 7i43 7i43-2)
+        string(MAKE_C_IDENTIFIER "hm2_${board}_${fw}" top)
+        set(gen ${VB_GENERATED}/${board}/${FW})
+        vboard_verilate(NAME V${top} TOP ${top}
+            SOURCES ${gen}/${top}.v
+            INCLUDE_DIRS ${gen}
+            LIBRARY_DIRS ${VB_HDL}/hostmot2 ${VB_HDL}/common
+            DEPENDS ${gen}/${top}_inc.v ${VB_HDL_SOURCES})
+        list(APPEND VBOARD_LIBS V${top})
+    endforeach()
+    # Mesa's firmware packages also have hm2/7i43-4/ for the 400K part (the
+    # same file as hm2/7i43/).  LinuxCNC's sample configurations name it.
     set(gen ${VB_GENERATED}/7i43/${FW})
+    set(bit4 ${HM_FIRMWARE_DIR}/hm2/7i43-4/${FW}.BIT)
+    add_custom_command(
+        OUTPUT ${bit4}
+        COMMAND ${Python3_EXECUTABLE} ${VBFW} ${gen}/${FW}.json --bit ${bit4}
+        DEPENDS ${gen}/${FW}.json ${gen}/${FW}.idrom.hex ${VBFW}
+        COMMENT "vbfw 7i43-4/${FW}.BIT"
+        VERBATIM)
+    list(APPEND VB_7I43_SIZED_BITS ${bit4})
+endforeach()
+# The 7i90's firmware (it boots it from its flash: vboard --board 7i90).
+foreach(fw SVST8_4)
+    string(MAKE_C_IDENTIFIER "hm2_7i90_${fw}" top)
+    string(TOLOWER ${top} top)
+    set(gen ${VB_GENERATED}/7i90/${fw})
     vboard_verilate(NAME V${top} TOP ${top}
         SOURCES ${gen}/${top}.v
         INCLUDE_DIRS ${gen}
         LIBRARY_DIRS ${VB_HDL}/hostmot2 ${VB_HDL}/common
         DEPENDS ${gen}/${top}_inc.v ${VB_HDL_SOURCES})
     list(APPEND VBOARD_LIBS V${top})
-    # Mesa's firmware packages put each 7i43 firmware in a directory per FPGA
-    # size: hm2/7i43-4/ for the 400K part (the same file as hm2/7i43/) and
-    # hm2/7i43-2/ for the 200K part (3s200tq144; its image is for the board
-    # `vboard --board 7i43-2`).  LinuxCNC's sample configurations name them.
-    set(bit4 ${HM_FIRMWARE_DIR}/hm2/7i43-4/${FW}.BIT)
-    set(bit2 ${HM_FIRMWARE_DIR}/hm2/7i43-2/${FW}.BIT)
-    add_custom_command(
-        OUTPUT ${bit4} ${bit2}
-        COMMAND ${Python3_EXECUTABLE} ${VBFW} ${gen}/${FW}.json --bit ${bit4}
-        COMMAND ${Python3_EXECUTABLE} ${VBFW} ${gen}/${FW}.json --bit ${bit2}
-                --part 3s200tq144 --image-board 7i43-2
-        DEPENDS ${gen}/${FW}.json ${gen}/${FW}.idrom.hex ${VBFW}
-        COMMENT "vbfw 7i43-4/${FW}.BIT 7i43-2/${FW}.BIT"
-        VERBATIM)
-    list(APPEND VB_7I43_SIZED_BITS ${bit4} ${bit2})
 endforeach()
 add_custom_target(vboard_7i43_sized_firmware ALL DEPENDS ${VB_7I43_SIZED_BITS})
 add_dependencies(vboard_7i43_sized_firmware hm2gen_outputs)

@@ -74,10 +74,12 @@ void EppFpgaBoard::step()
     in.naddrstr = bus_.naddrstr;
     in.nreset = (control_ & 0x04) != 0; // nInit
     in.io_in = fpga_inputs(lv[0] | (static_cast<uint64_t>(lv[1]) << 32));
+    if (pins_.words() > 2)
+        in.io_in_hi = lv[2];
     model_->clock(in, out_);
     uint64_t o = out_.io_out & fpga_output_mask(), e = out_.io_oe & fpga_output_mask();
-    uint32_t ow[2] = {static_cast<uint32_t>(o), static_cast<uint32_t>(o >> 32)};
-    uint32_t ew[2] = {static_cast<uint32_t>(e), static_cast<uint32_t>(e >> 32)};
+    uint32_t ow[3] = {static_cast<uint32_t>(o), static_cast<uint32_t>(o >> 32), out_.io_out_hi};
+    uint32_t ew[3] = {static_cast<uint32_t>(e), static_cast<uint32_t>(e >> 32), out_.io_oe_hi};
     pins_.set_fpga(ow, ew, t);
     now_ = t;
     stepped();

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "epp_port_board.h"
@@ -22,17 +23,44 @@
 
 namespace vb {
 
-// The firmware-facing signals of one fine clock.
+// The firmware-facing signals of one fine clock.  I/O pins 0..63 in the
+// 64-bit words, 64..95 (the 7i90's 72 pins) in the _hi ones.
 struct EppFpgaIn {
     uint8_t d = 0xFF;
     bool nwrite = true, ndatastr = true, naddrstr = true, nreset = true;
     uint64_t io_in = ~0ull;
+    uint32_t io_in_hi = ~0u;
 };
 struct EppFpgaOut {
     uint8_t d = 0;
     bool d_oe = false, nwait = false, reconfig = false;
     uint64_t io_out = 0, io_oe = 0;
+    uint32_t io_out_hi = 0, io_oe_hi = 0;
 };
+
+// A Verilated I/O vector port (an integer up to 64 bits, a VlWide above)
+// to and from the split words above.
+template <class T> void epp_set_io(T &port, uint64_t lo, uint32_t hi)
+{
+    if constexpr (std::is_integral_v<T>) {
+        (void)hi;
+        port = static_cast<T>(lo);
+    } else {
+        port.at(0) = static_cast<uint32_t>(lo);
+        port.at(1) = static_cast<uint32_t>(lo >> 32);
+        port.at(2) = hi;
+    }
+}
+template <class T> void epp_get_io(const T &port, uint64_t &lo, uint32_t &hi)
+{
+    if constexpr (std::is_integral_v<T>) {
+        lo = port;
+        hi = 0;
+    } else {
+        lo = port.at(0) | static_cast<uint64_t>(port.at(1)) << 32;
+        hi = port.at(2);
+    }
+}
 
 // A running firmware.
 class EppFpgaModel {
@@ -76,8 +104,8 @@ template <class V> class EppFpgaModelT : public EppFpgaModel {
         out.d = m_->epp_d_o;
         out.d_oe = m_->epp_d_oe;
         out.nwait = m_->epp_nwait;
-        out.io_out = m_->io_out;
-        out.io_oe = m_->io_oe;
+        epp_get_io(m_->io_out, out.io_out, out.io_out_hi);
+        epp_get_io(m_->io_oe, out.io_oe, out.io_oe_hi);
     }
 
     std::unique_ptr<VerilatedContext> ctx_;

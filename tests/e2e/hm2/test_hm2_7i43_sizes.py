@@ -147,5 +147,5 @@ def test_vboard_lists_both_sizes() -> None:
         [str(BUILD / "bin" / "vboard"), "--list"], capture_output=True, text=True, timeout=30
     )
     assert r.returncode == 0, r.stderr
-    assert "7i43 (3s400tq144): SVST4_4 SV8" in r.stdout.splitlines()
-    assert "7i43-2 (3s200tq144): SVST4_4 SV8" in r.stdout.splitlines()
+    assert "7i43 (3s400tq144): SVST4_4 SV8 SVST2_4_7I47" in r.stdout.splitlines()
+    assert "7i43-2 (3s200tq144): SVST4_4 SV8 SVST2_4_7I47" in r.stdout.splitlines()

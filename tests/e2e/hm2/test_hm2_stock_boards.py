@@ -200,3 +200,36 @@ def test_firmware_files_built() -> None:
     fw = BUILD / "lib" / "firmware" / "hm2"
     for c in OWN + MESA:
         assert (fw / c.board / f"{c.firmware}.BIT").is_file(), c
+
+
+# The 7i43's two sizes (spec section 16: 3s200tq144 / 3s400tq144, FPGASize
+# 200 / 400 in the IDROM); hm2/7i43-4/ holds the 400K files.
+SIZES = [("7i43", "7i43-4", "3s400tq144", 400), ("7i43-2", "7i43-2", "3s200tq144", 200)]
+
+
+@pytest.mark.parametrize("firmware", ["SVST4_4", "SVST2_4_7I47"])
+@pytest.mark.parametrize("board,fwdir,part,size", SIZES, ids=[s[0] for s in SIZES])
+def test_7i43_idrom_says_its_size(
+    tmp_path: Path, board: str, fwdir: str, part: str, size: int, firmware: str
+) -> None:
+    with vboard.VBoardProcess(tmp_path / "b.sock", board) as vb:
+        cfg = f"firmware=hm2/{fwdir}/{firmware}.BIT num_encoders=4 num_pwmgens=2 num_stepgens=4"
+        r = halrun(
+            tmp_path,
+            "loadrt hostmot2 debug_idrom=1\n"
+            f'loadrt hm2_7i43 port=sim:{vb.socket_path} config="{cfg}"\n',
+        )
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    lines = {squeeze(s) for s in out.splitlines()}
+    for want in (f"Part Name: {part}", f"FPGA Size: {size}", "FPGA Pins: 144", "IO Width: 48"):
+        assert f"hm2/hm2_7i43.0: {want}" in lines, want
+    if firmware != "SVST2_4_7I47":
+        return
+    pins = report(out, "7i43")
+    # the 7I47 signals on P4 as on the 5i20's P2 (the Smithy layout), P3 all GPIO
+    for io, sg in STEPS.items():
+        assert pins[io] == f"P4-{2 * io + 1:02d} StepGen #{sg}, pin Step (Output)"
+    assert pins[20] == "P4-41 PWMGen #0, pin Out0 (PWM or Up) (Output)"
+    assert [pins[i] for i in range(24, 48)] == [f"P3-{2 * b + 1:02d} IOPort" for b in range(24)]
+    assert sum("Encoder #" in v for v in pins.values()) == 12

@@ -4,6 +4,10 @@
  * firmware (docs/hm2_7i43.md, spec/hostmot2.md §17.2).  loadrt arguments
  * as LinuxCNC's (ioaddr, ioaddr_hi, epp_wide, config, debug_epp), plus
  * port= to choose another epp_port backend per board.
+ *
+ * Compiled a second time with HM2_EPP_7I90 defined it is hm2_7i90, the
+ * driver of the Mesa 7i90 (docs/hm2_7i90.md): the same arguments and
+ * transfers, a board whose FPGA loads its firmware from its own flash.
  */
 #include <errno.h>
 #include <stdarg.h>
@@ -17,21 +21,34 @@
 #include "hm2_7i43_llio.h"
 #include "rtapi.h"
 
+#ifdef HM2_EPP_7I90
+#define DRV "hm2_7i90"
+#define BOARD_TEXT "7i90"
+#define DRV_VERSION "0.1"
+#define setup_board hm2_7i90_setup_board
+#else
+#define DRV "hm2_7i43"
+#define BOARD_TEXT "7i43"
+#define DRV_VERSION HM2_7I43_VERSION
+#define setup_board hm2_7i43_setup_board
+#endif
+
 MODULE_LICENSE("GPL");
 MODULE_AUTHOR("hm2stack");
-MODULE_DESCRIPTION("HostMot2 Mesa 7i43 low-level driver (EPP)");
+MODULE_DESCRIPTION("HostMot2 Mesa " BOARD_TEXT " low-level driver (EPP)");
 
 #define NB HM2_7I43_MAX_BOARDS
 
 static int ioaddr[NB] = {0, -1, -1, -1};
-RTAPI_MP_ARRAY_INT(ioaddr, NB, "base address of the parallel port(s) (see hm2_7i43(9) manpage)");
+RTAPI_MP_ARRAY_INT(ioaddr, NB, "base address of the parallel port(s) (see " DRV "(9) manpage)");
 static int ioaddr_hi[NB] = {0, 0, 0, 0};
 RTAPI_MP_ARRAY_INT(ioaddr_hi, NB,
-                   "secondary address of the parallel port(s) (see hm2_7i43(9) manpage)");
+                   "secondary address of the parallel port(s) (see " DRV "(9) manpage)");
 static int epp_wide[NB] = {1, 1, 1, 1};
-RTAPI_MP_ARRAY_INT(epp_wide, NB, "set to 0 to disable wide EPP mode (see (hm2_7i43(9) manpage)");
+RTAPI_MP_ARRAY_INT(epp_wide, NB, "set to 0 to disable wide EPP mode (see (" DRV "(9) manpage)");
 static char *config[NB];
-RTAPI_MP_ARRAY_STRING(config, NB, "config string(s) for the 7i43 board(s) (see hostmot2(9) manpage)");
+RTAPI_MP_ARRAY_STRING(config, NB,
+                      "config string(s) for the " BOARD_TEXT " board(s) (see hostmot2(9) manpage)");
 static int debug_epp[NB] = {0, 0, 0, 0};
 RTAPI_MP_ARRAY_INT(debug_epp, NB, "Developer/debug use only!  Enable debug logging of most EPP\n"
                                   "transfers.");
@@ -93,12 +110,12 @@ static int setup_one(void *slots, int i, int comp_id)
     int r = epp_port_open(&s->port, port[i], ioaddr[i], ioaddr_hi[i], epp_wide[i], err,
                           sizeof(err));
     if (r) {
-        rtapi_print_msg(RTAPI_MSG_ERR, "hm2_7i43: board %d: cannot open the parallel port: %s\n",
-                        i, err);
+        rtapi_print_msg(RTAPI_MSG_ERR, DRV ": board %d: cannot open the parallel port: %s\n", i,
+                        err);
         return r;
     }
     s->port_open = 1;
-    r = hm2_7i43_setup_board(&s->board, &s->port, i, epp_wide[i], debug_epp[i], h7_log, h7_now);
+    r = setup_board(&s->board, &s->port, i, epp_wide[i], debug_epp[i], h7_log, h7_now);
     unsigned lo = (unsigned)s->port.base, hi = (unsigned)s->port.base_hi;
     if (!r) {
         s->board.llio.comp_id = comp_id;
@@ -107,7 +124,7 @@ static int setup_one(void *slots, int i, int comp_id)
     if (r) {
         rtapi_print_msg(RTAPI_MSG_ERR,
                         "%s: board at (ioaddr=0x%04X, ioaddr_hi=0x%04X, epp_wide %s) not found!\n",
-                        s->board.llio.name[0] ? s->board.llio.name : "hm2_7i43", lo, hi,
+                        s->board.llio.name[0] ? s->board.llio.name : DRV, lo, hi,
                         s->board.epp_wide ? "ON" : "OFF");
         return r;
     }
@@ -120,7 +137,7 @@ static int setup_one(void *slots, int i, int comp_id)
 }
 
 static const struct hm2_board_module_desc desc = {
-    .name = "hm2_7i43",
+    .name = DRV,
     .none_given = "no boards given (ioaddr[0] < 0 and no port)",
     .max_boards = NB, .slot_size = sizeof(struct h7_slot),
     .wanted = board_wanted, .setup = setup_one, .release = release_one,
@@ -128,7 +145,7 @@ static const struct hm2_board_module_desc desc = {
 
 int rtapi_app_main(void)
 {
-    rtapi_print("hm2_7i43: loading HostMot2 Mesa 7i43 driver version " HM2_7I43_VERSION "\n");
+    rtapi_print(DRV ": loading HostMot2 Mesa " BOARD_TEXT " driver version " DRV_VERSION "\n");
     return hm2_board_module_load(&mod, &desc);
 }
 

@@ -10,6 +10,7 @@
  * board); the status of each is checked afterwards, in order.
  */
 #include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,7 +34,7 @@ static int addr16(struct hm2_7i43 *b, uint32_t addr)
     if (!r)
         r = epp_addr_write(b->port, (uint8_t)((addr >> 8) & 0xFF));
     if (!r && b->debug_epp)
-        b->log(H7_PRINT, "hm2_7i43: selected address 0x%04X\n", addr & 0xFFFF);
+        b->log(H7_PRINT, "%s: selected address 0x%04X\n", b->drv, addr & 0xFFFF);
     return r;
 }
 
@@ -54,7 +55,7 @@ static int timed_out(struct hm2_7i43 *b, const char *what, uint32_t addr, uint32
            what, addr, (int)size);
     int r = epp_clear_timeout_hm2(b->port);
     if (r == 1)
-        b->log(H7_ERR, "hm2_7i43: failed to clear EPP Timeout!\n");
+        b->log(H7_ERR, "%s: failed to clear EPP Timeout!\n", b->drv);
     return -EIO;
 }
 
@@ -95,7 +96,7 @@ int hm2_7i43_read(hm2_llio_t *llio, uint32_t addr, void *buffer, size_t size)
         for (size_t i = 0; i + 4 <= size; i += 4) {
             uint32_t v;
             memcpy(&v, (uint8_t *)buffer + i, 4);
-            b->log(H7_PRINT, "hm2_7i43: read data 0x%08X\n", v);
+            b->log(H7_PRINT, "%s: read data 0x%08X\n", b->drv, v);
         }
     return 0;
 }
@@ -111,7 +112,7 @@ int hm2_7i43_write(hm2_llio_t *llio, uint32_t addr, const void *buffer, size_t s
         for (size_t i = 0; i + 4 <= size; i += 4) {
             uint32_t v;
             memcpy(&v, (const uint8_t *)buffer + i, 4);
-            b->log(H7_PRINT, "hm2_7i43: wrote data 0x%08X\n", v);
+            b->log(H7_PRINT, "%s: wrote data 0x%08X\n", b->drv, v);
         }
     r = queue_xfer(b, 1, addr, (void *)buffer, size, &st);
     if (!r)
@@ -305,12 +306,15 @@ static int h7_program_fpga(hm2_llio_t *llio, const struct hm2_bitfile *bf)
     return 0;
 }
 
-int hm2_7i43_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int epp_wide,
-                         int debug_epp, h7_log_fn log, h7_time_fn now)
+/* What both EPP boards do: the llio from the board table, the port in EPP
+ * mode with its control lines idle and no stale timeout. */
+static int epp_board_setup(struct hm2_7i43 *b, const char *board, epp_port_t *port, int index,
+                           int epp_wide, int debug_epp, h7_log_fn log, h7_time_fn now)
 {
-    const struct hm2_board_info *info = hm2_board_lookup("7i43");
+    const struct hm2_board_info *info = hm2_board_lookup(board);
     int r;
     memset(b, 0, sizeof(*b));
+    snprintf(b->drv, sizeof(b->drv), "hm2_%s", board);
     b->port = port;
     b->epp_wide = epp_wide ? 1 : 0;
     b->debug_epp = debug_epp;
@@ -318,7 +322,7 @@ int hm2_7i43_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int ep
     b->now = now;
     port->wide = b->epp_wide;
     if (!info) {
-        log(H7_ERR, "hm2_7i43: board table has no 7i43\n");
+        log(H7_ERR, "%s: board table has no %s\n", b->drv, board);
         return -EINVAL;
     }
     hm2_board_fill_llio(info, index, &b->llio);
@@ -329,8 +333,6 @@ int hm2_7i43_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int ep
     b->llio.send_queued_reads = h7_send_queued_reads;
     b->llio.queue_write = h7_queue_write;
     b->llio.send_queued_writes = h7_send_queued_writes;
-    b->llio.reset = hm2_7i43_reset;
-    b->llio.program_fpga = h7_program_fpga;
     b->llio.priv = b;
 
     /* EPP mode in the ECR, control lines idle, no stale timeout */
@@ -345,9 +347,28 @@ int hm2_7i43_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int ep
     if (r < 0)
         return port_failed(b, "port setup", r);
     if (r == 1)
-        log(H7_ERR, "hm2_7i43: failed to clear EPP Timeout!\n");
+        log(H7_ERR, "%s: failed to clear EPP Timeout!\n", b->drv);
+    return 0;
+}
+
+int hm2_7i43_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int epp_wide,
+                         int debug_epp, h7_log_fn log, h7_time_fn now)
+{
+    int r = epp_board_setup(b, "7i43", port, index, epp_wide, debug_epp, log, now);
+    if (r)
+        return r;
+    b->llio.reset = hm2_7i43_reset;
+    b->llio.program_fpga = h7_program_fpga;
     r = hm2_7i43_reset(&b->llio);
     if (r)
         return r;
     return detect_size(b);
+}
+
+int hm2_7i90_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int epp_wide,
+                         int debug_epp, h7_log_fn log, h7_time_fn now)
+{
+    /* the FPGA configures itself from the board's flash: no reset, no
+     * programming (a config firmware= is ignored), the part is the table's */
+    return epp_board_setup(b, "7i90", port, index, epp_wide, debug_epp, log, now);
 }

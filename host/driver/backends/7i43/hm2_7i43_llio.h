@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-2.0-or-later */
 /*
- * hm2_7i43_llio.h - the Mesa 7i43 as an hm2 llio on an epp_port
+ * hm2_7i43_llio.h - the Mesa 7i43 (and 7i90) as an hm2 llio on an epp_port
  * (spec/hostmot2.md §17.2, §18; docs/hm2_7i43.md).  No HAL calls: the RT
  * module (hm2_7i43.c) and the unit tests both use it.
  */
@@ -35,6 +35,7 @@ struct h7_xfer {
 
 struct hm2_7i43 {
     hm2_llio_t llio;
+    char drv[16]; /* "hm2_7i43", "hm2_7i90": the driver's message prefix */
     epp_port_t *port;
     int epp_wide;
     int debug_epp;
@@ -49,6 +50,12 @@ struct hm2_7i43 {
  * FPGA through the CPLD and detect its size (3s200tq144 / 3s400tq144).
  * 0 or -errno after printing why. */
 int hm2_7i43_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int epp_wide,
+                         int debug_epp, h7_log_fn log, h7_time_fn now);
+
+/* The Mesa 7i90 (EPP, firmware in its own flash): the same port setup and
+ * register transfers, llio hm2_7i90.<index>, no reset and no programming.
+ * 0 or -errno after printing why. */
+int hm2_7i90_setup_board(struct hm2_7i43 *b, epp_port_t *port, int index, int epp_wide,
                          int debug_epp, h7_log_fn log, h7_time_fn now);
 
 /* The llio functions (also reachable through b->llio). */
