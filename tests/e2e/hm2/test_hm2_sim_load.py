@@ -109,7 +109,7 @@ def test_hm2pinout_sim_source(tmp_path: Path) -> None:
         assert p.returncode == 0, p.stderr
         assert "IO Connections for P4" in p.stdout
         assert re.search(
-            r"^01\s+48\s+IOPort\s+StepGen\s+0\s+Step\s+\(Out\)", p.stdout, re.M
+            r"^P4-01\s+48\s+IOPort\s+StepGen\s+0\s+Step/Table1\s+\(Out\)", p.stdout, re.M
         ), p.stdout
     # a blank board and a missing socket: clear errors
     with vboard.VBoardProcess(tmp_path / "c.sock", "5i20") as vb:
