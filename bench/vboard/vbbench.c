@@ -4,7 +4,8 @@
  *
  *   vboard-bench SOCKET speed MS [steps]   simulated ClockLow cycles per
  *                                          wall second over MS ms of board
- *                                          time (steps: 4 stepgens running)
+ *                                          time (steps: 4 stepgens running;
+ *                                          active: every module at work)
  *   vboard-bench SOCKET servo N [ADV_NS]   N servo cycles of a 5i20 SVST8_4
  *                                          read list + write list (the
  *                                          registers hm2 touches per period),
@@ -73,6 +74,41 @@ static int start_stepgens(vbc_t *c)
     return rc;
 }
 
+/* Every SVST8_4 module at work, at rates a machine uses: 4 stepgens at
+ * 100/60/30/10 k steps/s (2 us pulses, 2 us idle, 1 us dir setup/hold), 8
+ * PWMs at 20 kHz (12 bits, different duties), the IOPort routing all of
+ * them to their pins; the encoders count what the command line's --quad
+ * sources feed them (bench/vboard/run.sh). */
+static int start_active(vbc_t *c)
+{
+    const uint32_t widths[4] = {66, 66, 66, 66}, setup[4] = {33, 33, 33, 33};
+    const uint32_t rates[4] = {12884901u, 7730941u, 3865470u, 1288490u};
+    const uint32_t dds = 0xFFFFFFFFu, alt = 0xFFFFFF, ddr_pwm = 0xFC0FC0, ddr_sg = 0xFFFFFF;
+    const uint32_t pwmrate = 53687, enable = 0xFF;
+    uint32_t vals[8], modes[8];
+    for (int i = 0; i < 8; i++) {
+        vals[i] = (uint32_t)(400 + 450 * i) << 16 | (i % 2 ? 0x80000000u : 0);
+        modes[i] = 3; /* 12 bits, sawtooth, PWM/Dir */
+    }
+    int rc = 0;
+    for (uint32_t port = 0; port < 3 && rc == 0; port++) {
+        uint32_t ddr = port == 2 ? ddr_sg : ddr_pwm;
+        rc = write_regs(c, 0x1200 + 4 * port, &alt, 1);
+        rc = rc ? rc : write_regs(c, 0x1100 + 4 * port, &ddr, 1);
+    }
+    rc = rc ? rc : write_regs(c, 0x2500, widths, 4);
+    rc = rc ? rc : write_regs(c, 0x2600, widths, 4);
+    rc = rc ? rc : write_regs(c, 0x2300, setup, 4);
+    rc = rc ? rc : write_regs(c, 0x2400, setup, 4);
+    rc = rc ? rc : write_regs(c, 0x2000, rates, 4);
+    rc = rc ? rc : write_regs(c, 0x2900, &dds, 1);
+    rc = rc ? rc : write_regs(c, 0x4100, modes, 8);
+    rc = rc ? rc : write_regs(c, 0x4000, vals, 8);
+    rc = rc ? rc : write_regs(c, 0x4200, &pwmrate, 1);
+    rc = rc ? rc : write_regs(c, 0x4400, &enable, 1);
+    return rc;
+}
+
 static int bench_speed(vbc_t *c, double ms, int steps)
 {
     struct vb_hello h;
@@ -81,7 +117,7 @@ static int bench_speed(vbc_t *c, double ms, int steps)
         fprintf(stderr, "vboard-bench: board not configured or unreachable: %s\n", c->err);
         return 1;
     }
-    if (steps && (rc = start_stepgens(c)) < 0) {
+    if (steps && (rc = steps == 2 ? start_active(c) : start_stepgens(c)) < 0) {
         fprintf(stderr, "vboard-bench: programming the stepgens failed: %s\n", c->err);
         return 1;
     }
@@ -221,7 +257,7 @@ int main(int argc, char **argv)
     if (argc == 3 && strcmp(argv[1], "pingpong") == 0)
         return bench_pingpong(atoi(argv[2]) > 0 ? atoi(argv[2]) : 1);
     if (argc < 4) {
-        fprintf(stderr, "usage: vboard-bench SOCKET speed MS [steps] | servo N [ADV_NS] | hello N\n"
+        fprintf(stderr, "usage: vboard-bench SOCKET speed MS [steps|active] | servo N [ADV_NS] | hello N\n"
                         "       vboard-bench pingpong N\n");
         return 2;
     }
@@ -237,7 +273,11 @@ int main(int argc, char **argv)
     c.spin_us = spin ? atoi(spin) : 0;
     int rc;
     if (strcmp(argv[2], "speed") == 0)
-        rc = bench_speed(&c, atof(argv[3]), argc > 4 && strcmp(argv[4], "steps") == 0);
+        rc = bench_speed(&c, atof(argv[3]),
+                         argc <= 4                          ? 0
+                         : strcmp(argv[4], "steps") == 0    ? 1
+                         : strcmp(argv[4], "active") == 0   ? 2
+                                                            : 0);
     else if (strcmp(argv[2], "servo") == 0)
         rc = bench_servo(&c, atoi(argv[3]) > 0 ? atoi(argv[3]) : 1,
                          argc > 4 ? strtoull(argv[4], NULL, 0) : 0);

@@ -43,3 +43,15 @@ def svst(sockdir: Path) -> Iterator[vboard.VBoardProcess]:
 def client(svst: vboard.VBoardProcess) -> Iterator[vboard.VBoardClient]:
     with svst.client() as c:
         yield c
+
+
+@pytest.fixture
+def rtl_client(sockdir: Path) -> Iterator[vboard.VBoardClient]:
+    """A 5i20 running SVST8_4 on the Verilated firmware (--model rtl): waveform
+    dumps need it (the default for a firmware the fast model covers is fast)."""
+    p = vboard.VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4", ["--model", "rtl"])
+    try:
+        with p.client() as c:
+            yield c
+    finally:
+        stop_clean(p)

@@ -214,7 +214,8 @@ def test_bad_pin_requests(client: VBoardClient) -> None:
     assert p.min_high_ns == NEVER and p.min_low_ns == NEVER
 
 
-def test_dump_writes_a_vcd(client: VBoardClient, sockdir: Path) -> None:
+def test_dump_writes_a_vcd(rtl_client: VBoardClient, sockdir: Path) -> None:
+    client = rtl_client
     vcd = sockdir / "w.vcd"
     client.dump(vcd)
     with pytest.raises(VBoardError, match="already running"):
@@ -311,9 +312,10 @@ def test_lockstep_runs_are_deterministic(sockdir: Path) -> None:
     assert any(p.rising for p in a[-2])  # type: ignore[union-attr]
 
 
-def test_dump_writes_an_fst(client: VBoardClient, sockdir: Path) -> None:
+def test_dump_writes_an_fst(rtl_client: VBoardClient, sockdir: Path) -> None:
     """FST header fields (block 0, big-endian, per the FST format) against the
     same signals traced as VCD."""
+    client = rtl_client
     import struct
 
     fst = sockdir / "w.fst"

@@ -69,6 +69,23 @@ class Board {
         return 0;
     }
 
+    // ---- model (vboard --model) -------------------------------------------------
+    // Which model runs the firmware: "rtl" (the Verilated firmware, the
+    // reference), "fast" (the C++ module models of sim/verilator/fast, proven
+    // equal to it by vboard-fastdiff; refused, naming the module, for a
+    // firmware with a module they do not cover) or "auto" (fast where the
+    // firmware is covered, else rtl).  Applies to the next configuration.
+    virtual int set_model(const std::string &kind, std::string &err)
+    {
+        if (kind == "rtl" || kind == "auto")
+            return 0;
+        err = "board " + name() + " has no fast model (only the hm2 local-bus boards have one); " +
+              "use --model rtl";
+        return -ENOTSUP;
+    }
+    // The model running now: "rtl", "fast" or "" while blank.
+    virtual std::string model() const { return configured() ? "rtl" : ""; }
+
     // ---- pins --------------------------------------------------------------
     // The pin layer (levels, external drive, loops, quadrature sources and
     // probe statistics).  Its size never changes over the board's life.

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "fast_idroms.h"
+#include "fast_model.h"
 #include "fwimage.h"
 
 namespace vb {
@@ -111,11 +113,48 @@ void LocalBusBoard::unconfigure()
     pins_.release_fpga(now_);
 }
 
-void LocalBusBoard::start(const LbEntry &e)
+int LocalBusBoard::set_model(const std::string &kind, std::string &err)
+{
+    if (kind != "rtl" && kind != "fast" && kind != "auto") {
+        err = "model '" + kind + "' is not rtl, fast or auto";
+        return -EINVAL;
+    }
+    model_kind_ = kind;
+    return 0;
+}
+
+int LocalBusBoard::use_fast(const LbEntry &e, bool &fast, std::string &err) const
+{
+    fast = false;
+    if (model_kind_ == "rtl")
+        return 0;
+    const uint32_t *idrom = fast::find_idrom(e.info->board, e.info->firmware);
+    std::string why = idrom ? fast::fast_coverage(idrom) : "its IDROM is not in this build";
+    if (why.empty()) {
+        fast = true;
+        return 0;
+    }
+    if (model_kind_ == "auto")
+        return 0;
+    err = "--model fast: firmware " + std::string(e.info->firmware) + " on " + board_ + ": " + why;
+    return -ENOTSUP;
+}
+
+void LocalBusBoard::start(const LbEntry &e, bool fast)
 {
     unconfigure();
     fw_ = e.info;
-    model_ = e.make(*e.info, pins_, now_);
+    fast_ = false;
+    if (fast) {
+        std::string err;
+        model_ = fast::make_fast_model(*e.info, fast::find_idrom(e.info->board, e.info->firmware),
+                                       pins_, now_, err);
+        fast_ = model_ != nullptr;
+        if (!model_) // use_fast() checked the firmware: not reached
+            std::fprintf(stderr, "vboard: %s; running the RTL model\n", err.c_str());
+    }
+    if (!model_)
+        model_ = e.make(*e.info, pins_, now_);
 }
 
 int LocalBusBoard::load(const std::string &firmware, std::string &err)
@@ -126,7 +165,11 @@ int LocalBusBoard::load(const std::string &firmware, std::string &err)
               " (built: " + join(firmwares()) + ")";
         return -ENOENT;
     }
-    start(*e);
+    bool fast = false;
+    int rc = use_fast(*e, fast, err);
+    if (rc < 0)
+        return rc;
+    start(*e, fast);
     return 0;
 }
 
@@ -174,7 +217,13 @@ int LocalBusBoard::config(uint32_t op, const uint8_t *bits, size_t len, vb_confi
                   ": " + err;
             return rc == -ENODEV ? -EINVAL : rc;
         }
-        start(*e);
+        bool fast = false;
+        rc = use_fast(*e, fast, err);
+        if (rc < 0) {
+            fill_status(st, firmware());
+            return rc;
+        }
+        start(*e, fast);
         break;
     }
     default:
@@ -314,8 +363,13 @@ void LocalBusBoard::boot_from_flash(uint32_t addr, bool by_iprog)
         return;
     const LbEntry *e = nullptr;
     std::string err;
-    if (match_image(r.image.data(), r.image.size(), e, err) == 0)
-        start(*e);
+    bool fast = false;
+    if (match_image(r.image.data(), r.image.size(), e, err) == 0) {
+        if (use_fast(*e, fast, err) < 0)
+            std::fprintf(stderr, "vboard: boot from flash: %s; board stays blank\n", err.c_str());
+        else
+            start(*e, fast);
+    }
     port_->set_bootsts(r.bootsts);
 }
 

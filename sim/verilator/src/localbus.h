@@ -75,6 +75,8 @@ class LocalBusBoard final : public Board {
                 std::string &err) override;
     int lb_write(const vb_xfer *x, size_t n, const uint8_t *data, std::string &err) override;
     int dump(bool on, const std::string &path, std::string &err) override;
+    int set_model(const std::string &kind, std::string &err) override;
+    std::string model() const override { return model_ ? (fast_ ? "fast" : "rtl") : ""; }
     int attach_flash(const std::string &path, const std::string &part, uint32_t speedup,
                      const std::string &firmware, std::string &err) override;
     bool flash_configured() const override;
@@ -82,7 +84,10 @@ class LocalBusBoard final : public Board {
 
   private:
     const LbEntry *find(const std::string &firmware) const;
-    void start(const LbEntry &e);
+    // Whether the fast model runs firmware e under the present --model
+    // (-ENOTSUP with the reason when --model fast and it cannot).
+    int use_fast(const LbEntry &e, bool &fast, std::string &err) const;
+    void start(const LbEntry &e, bool fast);
     void unconfigure();
     // The firmware an image selects: 0 and e, or -EINVAL (bad image) /
     // -ENODEV (another board's) with the reason.
@@ -98,6 +103,8 @@ class LocalBusBoard final : public Board {
     PinBank pins_;
     const FwInfo *fw_ = nullptr;
     std::unique_ptr<LbModelBase> model_;
+    std::string model_kind_ = "auto"; // --model
+    bool fast_ = false;               // model_ is the fast model
     uint64_t now_ = 0; // board time while blank
     std::unique_ptr<SpiFlash> flash_;
     std::unique_ptr<FlashPort> port_;

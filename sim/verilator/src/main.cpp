@@ -29,6 +29,7 @@ namespace {
 struct Options {
     vb::ServerOptions server;
     std::string board, firmware, dump, machine;
+    std::string model = "auto"; // --model rtl|fast|auto
     std::string flash, flash_part;
     uint32_t flash_speedup = 1;
     std::string udp;
@@ -48,6 +49,7 @@ void usage(FILE *f)
                  "              [--quad A:B:RATE | A:B:I:RATE[:EVERY]]... [--dump FILE.vcd|.fst] [--log]\n"
                  "              [--spin USEC] [--socket-mode OCTAL] [--machine FILE] [--sserial P.C=TYPE]...\n"
                  "              [--flash FILE] [--flash-part m25p16] [--flash-speedup N]\n"
+                 "              [--model rtl|fast|auto]\n"
                  "       vboard --udp ADDR[:PORT] [--udp-tick USEC | --udp-rt] [--socket PATH] --board 7i92|7i96s\n"
                  "              [--firmware NAME] [--flash FILE] ...\n"
                  "       vboard --list\n"
@@ -161,6 +163,7 @@ int parse_args(int argc, char **argv, Options &o)
         {"flash-speedup", required_argument, nullptr, 'S'},
         {"udp", required_argument, nullptr, 'U'},     {"udp-tick", required_argument, nullptr, 'T'},
         {"sserial", required_argument, nullptr, 'R'}, {"udp-rt", no_argument, nullptr, 'Y'},
+        {"model", required_argument, nullptr, 'O'},
         {nullptr, 0, nullptr, 0}};
     std::string err;
     int c;
@@ -183,6 +186,13 @@ int parse_args(int argc, char **argv, Options &o)
             o.remotes.push_back(r);
             break;
         }
+        case 'O':
+            o.model = optarg;
+            if (o.model != "rtl" && o.model != "fast" && o.model != "auto") {
+                err = std::string("bad --model '") + optarg + "': want rtl, fast or auto";
+                goto bad;
+            }
+            break;
         case 'F': o.flash = optarg; break;
         case 'P': o.flash_part = optarg; break;
         case 'S':
@@ -287,6 +297,9 @@ int list_boards()
 int setup(vb::Board &b, const Options &o)
 {
     std::string err;
+    // A waveform dump needs the RTL model: --dump makes auto mean rtl.
+    if (b.set_model(o.model == "auto" && !o.dump.empty() ? "rtl" : o.model, err) < 0)
+        goto bad;
     if (b.flash_configured() || !o.flash.empty() || !o.flash_part.empty()) {
         // Flash-configured boards boot from their flash; --firmware is what
         // a new flash is factory-programmed with.
