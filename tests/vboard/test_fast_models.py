@@ -22,7 +22,7 @@ FASTDIFF = vboard.build_dir() / "bin" / "vboard-fastdiff"
 CASES = [
     ("5i20", "SVST8_4", m)
     for m in ("idrom", "watchdog", "ioport", "led", "encoder", "stepgen", "pwmgen", "all")
-] + [("5i25", "7I76x2", m) for m in ("ioport", "encoder", "stepgen", "all")]
+] + [("5i20", "SV12", m) for m in ("encoder", "pwmgen", "all")]
 
 
 def _fastdiff(*args: str, timeout: float = 300) -> subprocess.CompletedProcess[str]:
@@ -76,6 +76,14 @@ def test_model_choice(sockdir: Path, args: tuple[str, ...], fast: bool) -> None:
         stop_clean(p)
 
 
+def test_auto_runs_rtl_for_an_uncovered_firmware(sockdir: Path) -> None:
+    p = vboard.VBoardProcess(sockdir / "b.sock", "5i25", "7I76x2")
+    try:
+        assert not _dump_refused(p, sockdir / "w.vcd")
+    finally:
+        stop_clean(p)
+
+
 def test_dump_on_the_command_line_runs_rtl(sockdir: Path) -> None:
     p = vboard.VBoardProcess(sockdir / "b.sock", "5i20", "SVST8_4", ["--dump", "w.vcd"])
     try:
@@ -91,6 +99,13 @@ def test_dump_on_the_command_line_runs_rtl(sockdir: Path) -> None:
     [
         ("5i20", "SVST8_4", ["--model", "quick"], "bad --model 'quick': want rtl, fast or auto"),
         ("7i43", "SV8", ["--model", "fast"], "board 7i43 has no fast model"),
+        # 7I76x2 carries Smart Serial, which the fast model does not cover
+        (
+            "5i25",
+            "7I76x2",
+            ["--model", "fast"],
+            "--model fast: firmware 7I76x2 on 5i25: the fast model does not cover module SSerial",
+        ),
     ],
 )
 def test_model_errors(sockdir: Path, board: str, fw: str, args: list[str], text: str) -> None:

@@ -22,7 +22,7 @@ target_include_directories(vboard_inproc PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src
     ${CMAKE_CURRENT_SOURCE_DIR}/include ${VB_OUT}/fwinfo)
 target_compile_options(vboard_inproc PRIVATE ${VB_OWN_FLAGS})
 target_compile_definitions(vboard_inproc PRIVATE VBOARD_HAVE_FST=1)
-target_link_libraries(vboard_inproc PRIVATE vb_lb_models vb_verilated vb_fstcpp
+target_link_libraries(vboard_inproc PRIVATE vb_lb_models vb_verilated vb_fstcpp vb_fast
     ${VB_LZ4_LIB} ZLIB::ZLIB -Wl,--version-script=${VB_INPROC_DIR}/inproc.map)
 foreach(top ${VB_LB_MODELS})
     target_link_libraries(vboard_inproc PRIVATE V${top})

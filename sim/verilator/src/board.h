@@ -74,9 +74,11 @@ class Board {
     // reference), "fast" (the C++ module models of sim/verilator/fast, proven
     // equal to it by vboard-fastdiff; refused, naming the module, for a
     // firmware with a module they do not cover) or "auto" (fast where the
-    // firmware is covered, else rtl).  Applies to the next configuration.
-    virtual int set_model(const std::string &kind, std::string &err)
+    // firmware is covered, else rtl).  Applies to the next configuration;
+    // `firmware` (may be empty) is checked against the model at once.
+    virtual int set_model(const std::string &kind, const std::string &firmware, std::string &err)
     {
+        (void)firmware;
         if (kind == "rtl" || kind == "auto")
             return 0;
         err = "board " + name() + " has no fast model (only the hm2 local-bus boards have one); " +

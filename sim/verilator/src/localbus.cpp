@@ -113,13 +113,21 @@ void LocalBusBoard::unconfigure()
     pins_.release_fpga(now_);
 }
 
-int LocalBusBoard::set_model(const std::string &kind, std::string &err)
+int LocalBusBoard::set_model(const std::string &kind, const std::string &firmware,
+                             std::string &err)
 {
     if (kind != "rtl" && kind != "fast" && kind != "auto") {
         err = "model '" + kind + "' is not rtl, fast or auto";
         return -EINVAL;
     }
+    std::string old = model_kind_;
     model_kind_ = kind;
+    const LbEntry *e = firmware.empty() ? nullptr : find(firmware);
+    bool fast = false;
+    if (e && use_fast(*e, fast, err) < 0) {
+        model_kind_ = old;
+        return -ENOTSUP;
+    }
     return 0;
 }
 

@@ -75,7 +75,8 @@ class LocalBusBoard final : public Board {
                 std::string &err) override;
     int lb_write(const vb_xfer *x, size_t n, const uint8_t *data, std::string &err) override;
     int dump(bool on, const std::string &path, std::string &err) override;
-    int set_model(const std::string &kind, std::string &err) override;
+    int set_model(const std::string &kind, const std::string &firmware,
+                  std::string &err) override;
     std::string model() const override { return model_ ? (fast_ ? "fast" : "rtl") : ""; }
     int attach_flash(const std::string &path, const std::string &part, uint32_t speedup,
                      const std::string &firmware, std::string &err) override;
@@ -103,7 +104,9 @@ class LocalBusBoard final : public Board {
     PinBank pins_;
     const FwInfo *fw_ = nullptr;
     std::unique_ptr<LbModelBase> model_;
-    std::string model_kind_ = "auto"; // --model
+    // --model: rtl unless the owner says (vboard passes auto by default;
+    // the in-process library keeps rtl until it asks for another)
+    std::string model_kind_ = "rtl";
     bool fast_ = false;               // model_ is the fast model
     uint64_t now_ = 0; // board time while blank
     std::unique_ptr<SpiFlash> flash_;

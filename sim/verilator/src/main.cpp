@@ -298,7 +298,7 @@ int setup(vb::Board &b, const Options &o)
 {
     std::string err;
     // A waveform dump needs the RTL model: --dump makes auto mean rtl.
-    if (b.set_model(o.model == "auto" && !o.dump.empty() ? "rtl" : o.model, err) < 0)
+    if (b.set_model(o.model == "auto" && !o.dump.empty() ? "rtl" : o.model, o.firmware, err) < 0)
         goto bad;
     if (b.flash_configured() || !o.flash.empty() || !o.flash_part.empty()) {
         // Flash-configured boards boot from their flash; --firmware is what
