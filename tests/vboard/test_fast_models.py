@@ -23,6 +23,8 @@ CASES = [
     ("5i20", "SVST8_4", m)
     for m in ("idrom", "watchdog", "ioport", "led", "encoder", "stepgen", "pwmgen", "all")
 ] + [("5i20", "SV12", m) for m in ("encoder", "pwmgen", "all")]
+# Encoder 0x83 (Probe, IndexMask pins) and StepGen 0x42 (swap bit)
+CASES += [("5i20", "SV2ST2_PRB", m) for m in ("encoder", "stepgen", "all")]
 
 
 def _fastdiff(*args: str, timeout: float = 300) -> subprocess.CompletedProcess[str]:

@@ -12,19 +12,28 @@ namespace vb::fast {
 namespace {
 constexpr uint32_t kMaxModules = 32;
 
-bool covered(uint8_t gtag)
+// The module versions whose Verilog the models transcribe (hdl/hostmot2).
+bool covered_version(uint8_t gtag, uint8_t version)
 {
     switch (gtag) {
     case kTagWatchdog:
     case kTagIoPort:
-    case kTagEncoder:
-    case kTagStepGen:
     case kTagPwmGen:
     case kTagLed:
-        return true;
+        return version == 0;
+    case kTagEncoder:
+        return version == 2 || version == 0x83;
+    case kTagStepGen:
+        return version == 2 || version == 0x42;
     default:
         return false;
     }
+}
+
+bool covered(uint8_t gtag)
+{
+    return gtag == kTagWatchdog || gtag == kTagIoPort || gtag == kTagEncoder ||
+           gtag == kTagStepGen || gtag == kTagPwmGen || gtag == kTagLed;
 }
 } // namespace
 
@@ -102,8 +111,11 @@ int parse_config(const uint32_t *words, Config &cfg, std::string &err)
         m.instances = static_cast<uint8_t>(words[w] >> 24);
         m.base = static_cast<uint16_t>(words[w + 1]);
         m.registers = static_cast<uint8_t>(words[w + 1] >> 16);
-        if (!covered(m.gtag)) {
+        if (!covered(m.gtag) || !covered_version(m.gtag, m.version)) {
+            char v[8];
+            std::snprintf(v, sizeof v, "0x%02x", m.version);
             err = "the fast model does not cover module " + tag_name(m.gtag) +
+                  (covered(m.gtag) ? std::string(" version ") + v : std::string()) +
                   " (module descriptor " + std::to_string(i) +
                   "); run this firmware with --model rtl";
             return -ENOTSUP;

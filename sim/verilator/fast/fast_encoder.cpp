@@ -6,9 +6,11 @@
 namespace vb::fast {
 
 namespace {
-constexpr int kAbMaskPol = 14, kQfilter = 11, kUpDown = 10, kUseMask = 9, kMaskPol = 8,
+constexpr int kAbMaskPol = 14, kLatchPrb = 13, kProbePol = 12, kQfilter = 11, kUpDown = 10, kUseMask = 9, kMaskPol = 8,
               kAbGate = 7, kJustOnce = 6, kClrIdx = 5, kLatchIdx = 4, kIdxPol = 3;
 inline bool bit(uint32_t v, int n) { return (v >> n) & 1u; }
+// the filter's inputs from the synchronized pins: A, B, Index, Probe
+inline uint8_t fin(uint8_t s) { return static_cast<uint8_t>((s & 7) | ((s >> 1) & 8)); }
 
 // A prescaler that ticks when pre >= div + 1 or div's top bit is set, then
 // restarts at 0: ticks over n edges and the prescaler after them.
@@ -37,7 +39,7 @@ uint64_t prescale(uint32_t &pre, uint32_t div, bool top, uint32_t mask, uint64_t
 } // namespace
 
 EncoderBank::EncoderBank(uint16_t base, uint32_t clock_low_hz,
-                         std::vector<std::array<int, 4>> pins)
+                         std::vector<std::array<int, 5>> pins)
     : page_(static_cast<uint8_t>(base >> 8)), pins_(std::move(pins)), enc_(pins_.size())
 {
     uint32_t div = (clock_low_hz + 8000000u) / 16000000u;
@@ -48,7 +50,7 @@ EncoderBank::EncoderBank(uint16_t base, uint32_t clock_low_hz,
 uint8_t EncoderBank::pins_of(size_t i, const uint32_t *in) const
 {
     uint8_t d = 0;
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < 5; k++) {
         int p = pins_[i][k];
         if (p >= 0 && ((in[p >> 5] >> (p & 31)) & 1u))
             d |= static_cast<uint8_t>(1u << k);
@@ -68,7 +70,7 @@ uint32_t EncoderBank::read(uint16_t addr) const
     case 0: return static_cast<uint32_t>(e.stamp) << 16 | e.count;
     case 1:
         return static_cast<uint32_t>(e.latch) << 16 | (e.qerr ? 1u << 15 : 0u) |
-               (e.ctrl & 0x7ff8u) | e.filt;
+               (e.ctrl & 0x7ff8u) | (e.filt & 7);
     case 2: return inst == 0 ? tsdiv_ : 0;
     case 3: return inst == 0 ? tscount_ : 0;
     default: return inst == 0 ? qfilter_ : 0;
@@ -86,7 +88,7 @@ bool EncoderBank::cond(const Enc &e) const
 
 void EncoderBank::enc_edge(Enc &e, uint8_t d, bool we_count, bool we_ccr, uint32_t wdata)
 {
-    uint8_t ps = e.s2;
+    uint8_t ps = fin(e.s2);
     uint8_t fmax = bit(e.ctrl, kQfilter) ? 15 : 3;
     // decoder, from the state before the edge
     bool a = e.filt & 1, b = (e.filt >> 1) & 1;
@@ -111,6 +113,9 @@ void EncoderBank::enc_edge(Enc &e, uint8_t d, bool we_count, bool we_ccr, uint32
     bool index_event = e.live && c && !e.cond_prev;
     bool do_clear = index_event && bit(e.ctrl, kClrIdx);
     bool do_latch = index_event && bit(e.ctrl, kLatchIdx);
+    bool prb = bit(e.filt, 3);
+    bool probe_edge = e.live && prb != e.probe_prev && prb == bit(e.ctrl, kProbePol);
+    bool do_probe = probe_edge && bit(e.ctrl, kLatchPrb);
 
     // filter
     Enc n = e;
@@ -118,15 +123,15 @@ void EncoderBank::enc_edge(Enc &e, uint8_t d, bool we_count, bool we_ccr, uint32
         if (e.warm != 3) {
             n.warm = static_cast<uint8_t>(e.warm + 1);
         } else {
-            n.filt = ps & 7;
-            for (int j = 0; j < 3; j++)
+            n.filt = ps & 15;
+            for (int j = 0; j < 4; j++)
                 n.fcnt[j] = bit(ps, j) ? fmax : 0;
             n.primed = true;
         }
     } else {
         n.live = true;
         if (sample_) {
-            for (int j = 0; j < 3; j++) {
+            for (int j = 0; j < 4; j++) {
                 uint8_t f = e.fcnt[j];
                 if (bit(ps, j)) {
                     if (f + 1 >= fmax) {
@@ -151,6 +156,7 @@ void EncoderBank::enc_edge(Enc &e, uint8_t d, bool we_count, bool we_ccr, uint32
     // decoder registers
     n.prev = e.filt & 3;
     n.cond_prev = c;
+    n.probe_prev = prb;
     if (we_count || do_clear)
         n.count = 0;
     else if (up)
@@ -159,12 +165,15 @@ void EncoderBank::enc_edge(Enc &e, uint8_t d, bool we_count, bool we_ccr, uint32
         n.count = static_cast<uint16_t>(e.count - 1);
     if (up || down)
         n.stamp = tscount_;
-    if (do_latch)
+    if (do_probe || do_latch)
         n.latch = e.count;
-    if (we_ccr)
+    if (we_ccr) {
         n.ctrl = static_cast<uint16_t>(wdata & 0x7ff8u);
-    else if (index_event && bit(e.ctrl, kJustOnce))
-        n.ctrl = static_cast<uint16_t>(e.ctrl & ~((1u << kClrIdx) | (1u << kLatchIdx) | (1u << 13)));
+    } else if (bit(e.ctrl, kJustOnce)) {
+        uint32_t clr = (index_event ? (1u << kClrIdx) | (1u << kLatchIdx) : 0u) |
+                       (do_probe ? 1u << kLatchPrb : 0u);
+        n.ctrl = static_cast<uint16_t>(e.ctrl & ~clr);
+    }
     if (qerr_set)
         n.qerr = true;
     else if (we_ccr && bit(wdata, 15))
@@ -213,12 +222,13 @@ bool EncoderBank::steady(const Enc &e, uint8_t d) const
     if (!e.primed || !e.live || e.s1 != d || e.s2 != d)
         return false;
     uint8_t fmax = bit(e.ctrl, kQfilter) ? 15 : 3;
-    for (int j = 0; j < 3; j++) {
-        bool p = bit(d, j);
+    uint8_t f = fin(d);
+    for (int j = 0; j < 4; j++) {
+        bool p = bit(f, j);
         if (p ? (e.fcnt[j] != fmax || !bit(e.filt, j)) : (e.fcnt[j] != 0 || bit(e.filt, j)))
             return false;
     }
-    return e.prev == (e.filt & 3) && e.cond_prev == cond(e);
+    return e.prev == (e.filt & 3) && e.cond_prev == cond(e) && e.probe_prev == bit(e.filt, 3);
 }
 
 uint64_t EncoderBank::horizon(const uint32_t *in) const

@@ -124,17 +124,17 @@ class FastModel final : public LbModelBase {
   private:
     void build(const Config &cfg)
     {
-        std::vector<std::array<int, 4>> enc_pins;
+        std::vector<std::array<int, 5>> enc_pins;
         const ModuleDesc *enc = cfg.find(kTagEncoder);
         const ModuleDesc *sg = cfg.find(kTagStepGen);
         const ModuleDesc *pwm = cfg.find(kTagPwmGen);
         const ModuleDesc *led = cfg.find(kTagLed);
         if (enc)
-            enc_pins.assign(enc->instances, {-1, -1, -1, -1});
+            enc_pins.assign(enc->instances, {-1, -1, -1, -1, -1});
         for (uint32_t p = 0; p < cfg.io_width; p++) {
             const PinDesc &d = cfg.pins[p];
             if (enc && d.sec_tag == kTagEncoder && d.sec_unit < enc->instances &&
-                d.sec_pin >= 1 && d.sec_pin <= 4)
+                d.sec_pin >= 1 && d.sec_pin <= 5)
                 enc_pins[d.sec_unit][d.sec_pin - 1] = static_cast<int>(p);
             if (!(d.sec_pin & 0x80))
                 continue;

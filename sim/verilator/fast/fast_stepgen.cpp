@@ -35,6 +35,14 @@ uint32_t StepgenBank::rate_eff(const Sg &s)
 
 uint8_t StepgenBank::out_d(const Sg &s)
 {
+    uint8_t o = out_mode(s);
+    if (s.swap)
+        o = static_cast<uint8_t>((o & ~3u) | ((o & 1) << 1) | ((o >> 1) & 1));
+    return o;
+}
+
+uint8_t StepgenBank::out_mode(const Sg &s)
+{
     switch (s.mode) {
     case kStepDir: return static_cast<uint8_t>((s.pulse ? 1 : 0) | (s.dir ? 2 : 0));
     case kUpDown: return static_cast<uint8_t>((s.pulse && !s.dir ? 1 : 0) | (s.pulse && s.dir ? 2 : 0));
@@ -77,7 +85,10 @@ void StepgenBank::sg_edge(Sg &s, const Bus &b, bool sel, uint8_t off)
     if (sel) {
         switch (off) {
         case 0: n.rate = w; break;
-        case 2: n.mode = w & 3; break;
+        case 2:
+            n.mode = w & 3;
+            n.swap = (w >> 2) & 1;
+            break;
         case 3: n.dirsetup = w & 0x3fff; break;
         case 4: n.dirhold = w & 0x3fff; break;
         case 5: n.pulsewidth = w & 0x3fff; break;

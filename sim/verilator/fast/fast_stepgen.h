@@ -33,6 +33,7 @@ class StepgenBank {
         uint32_t rate = 0;
         uint64_t acc = 0; // 48 bits
         uint8_t mode = 0;
+        bool swap = false; // Mode bit 2: Step and Dir pins exchanged
         uint16_t dirsetup = 0, dirhold = 0, pulsewidth = 0, pulseidle = 0;
         uint8_t table[16] = {};
         uint8_t tablelen = 0;
@@ -43,6 +44,7 @@ class StepgenBank {
     };
     static uint32_t rate_eff(const Sg &s);
     static uint8_t out_d(const Sg &s);
+    static uint8_t out_mode(const Sg &s); // before the swap
     // ticks until the tick that makes the accumulator cross (kForever: never)
     static uint64_t ticks_to_cross(const Sg &s);
     uint64_t sg_horizon(const Sg &s) const;

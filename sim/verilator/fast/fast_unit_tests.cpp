@@ -54,6 +54,14 @@ void test_config()
           "an SSerial module is refused by name: '" + why + "'");
     check(parse_config(img, cfg, err) == -ENOTSUP, "refusal is -ENOTSUP");
 
+    // A module version the models do not transcribe: refused with it.
+    std::memcpy(img, w, sizeof img);
+    uint32_t enc_md = img[1] / 4 + 3 * 2; // SVST8_4: Watchdog, IOPort, Encoder
+    img[enc_md] = (img[enc_md] & ~0xff00u) | 0x0700u;
+    why = fast_coverage(img);
+    check(why.find("does not cover module Encoder version 0x07") != std::string::npos,
+          "an unknown Encoder version is refused: '" + why + "'");
+
     std::memcpy(img, w, sizeof img);
     img[2] = 4000; // pin descriptors outside the IDROM
     check(parse_config(img, cfg, err) == -EINVAL && err.find("outside") != std::string::npos,
