@@ -200,8 +200,13 @@ void EncoderBank::edge(const Bus &b, bool rst, const uint32_t *in)
     bool ts_tick = (tsdiv_ >> 15) || tspre_ >= static_cast<uint32_t>(tsdiv_) + 1;
     bool f_tick = (qfilter_ >> 11) || fpre_ >= static_cast<uint32_t>(qfilter_) + 1;
     for (size_t i = 0; i < enc_.size(); i++) {
+        Enc &e = enc_[i];
         bool sel = b.we && in_range && inst == i;
-        enc_edge(enc_[i], pins_of(i, in), sel && off == 0, sel && off == 1, b.wdata);
+        uint8_t d = pins_of(i, in);
+        if (e.quiet && !sel && d == e.s1)
+            continue; // steady, same inputs, not written: nothing changes
+        enc_edge(e, d, sel && off == 0, sel && off == 1, b.wdata);
+        e.quiet = steady(e, d);
     }
     if (b.we && in_range && inst == 0 && off == 2)
         tsdiv_ = static_cast<uint16_t>(b.wdata);

@@ -38,6 +38,7 @@ class EncoderBank {
         uint16_t count = 0, stamp = 0, latch = 0;
         uint8_t warm = 0;
         bool primed = false, live = false;
+        bool quiet = false; // steady for the inputs s1 holds: an idle edge is the identity
     };
     uint8_t pins_of(size_t i, const uint32_t *in) const;
     bool cond(const Enc &e) const;

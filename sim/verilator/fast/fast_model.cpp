@@ -156,7 +156,7 @@ class FastModel final : public LbModelBase {
     }
 
     // One ClockLow edge of every ClockLow-domain module.
-    void low_edge(const uint32_t *in, bool ack_h_pre)
+    void low_edge(const uint32_t *in, bool ack_h_pre, bool pwm_idle)
     {
         if (rst_) {
             rdata_ = 0;
@@ -185,7 +185,7 @@ class FastModel final : public LbModelBase {
             enc_->edge(bus_, rst_, in);
         if (sg_)
             sg_->edge(bus_, rst_);
-        if (pwm_)
+        if (pwm_ && !pwm_idle)
             pwm_->low_edge(bus_, rst_, ack_h_pre);
         if (rst_)
             bus_ = Bus{};
@@ -229,10 +229,13 @@ class FastModel final : public LbModelBase {
         }
         bool ack_pre = pwm_ ? pwm_->ack_h() : false;
         bool changed = low;
-        if (pwm_)
+        bool pwm_idle = pwm_ && low && !rst_ && pwm_->idle_low_edge_ok(bus_);
+        if (pwm_idle)
+            pwm_->skip_high(1);
+        else if (pwm_)
             changed = pwm_->high_edge(rst_) || changed;
         if (low)
-            low_edge(in, ack_pre);
+            low_edge(in, ack_pre, pwm_idle);
         if (changed) {
             outputs();
             pins_.set_fpga(out_.data(), oe_.data(), t);

@@ -29,6 +29,7 @@ uint32_t PwmBank::read(uint16_t addr) const
 
 void PwmBank::low_edge(const Bus &b, bool rst, bool ack_h_pre)
 {
+    h_valid_ = false;
     bool ack_s = ack2_;
     ack2_ = ack1_;
     ack1_ = ack_h_pre;
@@ -109,6 +110,7 @@ void PwmBank::out_map(uint8_t mode, bool pwm, bool dir, bool pdm, bool &o0, bool
 
 bool PwmBank::high_edge(bool rst)
 {
+    h_valid_ = false;
     bool rst_h = r2_;
     bool changed = false;
     r2_ = r1_;
@@ -196,6 +198,15 @@ uint64_t PwmBank::ticks_to_change(uint32_t i) const
 
 uint64_t PwmBank::horizon_high() const
 {
+    if (!h_valid_) {
+        h_ = compute_horizon();
+        h_valid_ = true;
+    }
+    return h_;
+}
+
+uint64_t PwmBank::compute_horizon() const
+{
     // handshake and reset settled, nothing pending on either side
     if (r1_ || r2_ || dirty_ || busy_ || req_ != ack_h_ || q1_ != req_ || q2_ != req_ ||
         ack1_ != ack_h_ || ack2_ != ack_h_)
@@ -239,6 +250,8 @@ void PwmBank::skip_high(uint64_t n)
 {
     if (n == 0)
         return;
+    if (h_valid_)
+        h_ = h_ == kForever ? h_ : h_ - n;
     uint64_t k = Dds::ticks(pwm_tick_, pwm_phase_, cfg_.pwmrate, 16, n);
     uint64_t kp = Dds::ticks(pdm_tick_, pdm_phase_, cfg_.pdmrate, 16, n);
     ref_ = static_cast<uint16_t>((ref_ + k) & 0x1fff);

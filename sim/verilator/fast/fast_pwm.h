@@ -33,6 +33,10 @@ class PwmBank {
     // reset is on its way, or an output is about to change)
     uint64_t horizon_high() const;
     void skip_high(uint64_t n);
+    // A ClockLow edge with the bus not writing while horizon_high() >= 1:
+    // the ClockLow side is settled, so its edge is the identity; the
+    // ClockHigh edge at the same time passes in closed form.
+    bool idle_low_edge_ok(const Bus &b) const { return !b.we && horizon_high() >= 1; }
     bool out0(uint32_t i) const { return inst_[i].out0; }
     bool out1(uint32_t i) const { return inst_[i].out1; }
     bool nenable(uint32_t i) const { return (nenable_ >> i) & 1u; }
@@ -51,6 +55,10 @@ class PwmBank {
     static bool cmp_lt(uint16_t ref, uint8_t mode, uint16_t act);
     static void out_map(uint8_t mode, bool pwm, bool dir, bool pdm, bool &o0, bool &o1);
     uint64_t ticks_to_change(uint32_t i) const;
+    uint64_t compute_horizon() const;
+    // horizon_high() cache: valid until a stepped edge changes the state
+    mutable bool h_valid_ = false;
+    mutable uint64_t h_ = 0;
 
     uint8_t page_;
     uint32_t num_;
