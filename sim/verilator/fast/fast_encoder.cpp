@@ -96,9 +96,9 @@ void EncoderBank::enc_edge(Enc &e, uint8_t d, bool we_count, bool we_ccr, uint32
     bool up = false, down = false, qerr_set = false;
     if (!e.live) {
     } else if (bit(e.ctrl, kUpDown)) {
-        if (a && !pa) {
-            up = b;
-            down = !b;
+        if (a && !pa) { // B as it was before the A edge
+            up = pb;
+            down = !pb;
         }
     } else if ((a != pa) && (b != pb)) {
         qerr_set = true;

@@ -419,7 +419,13 @@ int LocalBusBoard::jtag(uint32_t levels, uint32_t &tdo, std::string &err)
                                          "blank: %s\n", board_.c_str(), why.c_str());
                     return -EINVAL;
                 }
-                start(*e);
+                bool fast = false;
+                if (use_fast(*e, fast, why) < 0) {
+                    std::fprintf(stderr, "vboard: %s: JTAG configuration refused, board "
+                                         "stays blank: %s\n", board_.c_str(), why.c_str());
+                    return -ENOTSUP;
+                }
+                start(*e, fast);
                 return 0;
             },
             [this] { unconfigure(); }, [this] { return fw_ != nullptr; });
