@@ -16,6 +16,12 @@
 #   3. the bare protocol round trip (HELLO), for reference.
 #   4. the 5i25 7I76x2 (ClockLow only) and the Pluto-P's pluto_servo (one
 #      40 MHz clock; with and without VBOARD_EVAL=full) simulation speed.
+#   5. the fast model (vboard --model fast) beside the RTL model (--model
+#      rtl): 5i20 SVST8_4 idle and with every module at work (vboard-bench
+#      speed MS active: 4 stepgens at 100/60/30/10 k steps/s, 8 PWMs at
+#      20 kHz, 8 encoders fed by quadrature sources of 1-80 k counts/s);
+#      then bench/vboard/fastdiff.sh (FASTDIFF=0 skips it: 10^6 operations
+#      per module against the RTL model take tens of minutes).
 # Runs on its own: bench/vboard/run.sh (uses $HM_BUILD or build/).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -37,7 +43,9 @@ cleanup() {
 trap cleanup EXIT
 
 start_board() {
-    "$vb" --socket "$dir/vb.sock" --board "${BOARD:-5i20}" --firmware "${FW:-SVST8_4}" "$@" \
+    # sections 1-4 measure the RTL model (the default would be the fast one)
+    "$vb" --socket "$dir/vb.sock" --board "${BOARD:-5i20}" --firmware "${FW:-SVST8_4}" \
+        --model rtl "$@" \
         >"$dir/out" 2>"$dir/err" &
     pid=$!
     for _ in $(seq 100); do
@@ -107,3 +115,22 @@ stop_board
 VBOARD_EVAL=full BOARD=pluto FW=pluto_servo start_board
 printf "same, VBOARD_EVAL=full:         "; RT_HZ=40e6 speed 100
 stop_board
+
+# 5. The fast model beside the RTL model.
+quads="--quad 3:2:80000 --quad 1:0:-60000 --quad 15:14:40000 --quad 13:12:20000"
+quads="$quads --quad 27:26:10000 --quad 25:24:-5000 --quad 39:38:2000 --quad 37:36:1000"
+echo "fast model vs RTL model, 5i20 SVST8_4 (goal: fast >= 10x real time, RTL >= 0.1x):"
+start_board --model fast
+printf "fast, idle:                     "; speed 10000
+stop_board
+# shellcheck disable=SC2086
+start_board --model fast $quads
+printf "fast, all modules active:       "; speed 2000 active
+stop_board
+# shellcheck disable=SC2086
+start_board --model rtl $quads
+printf "rtl, all modules active:        "; speed 30 active
+stop_board
+if [ "${FASTDIFF:-1}" != 0 ]; then
+    "$root/bench/vboard/fastdiff.sh"
+fi
