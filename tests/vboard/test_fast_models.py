@@ -25,6 +25,18 @@ CASES = [
 ] + [("5i20", "SV12", m) for m in ("encoder", "pwmgen", "all")]
 # Encoder 0x83 (Probe, IndexMask pins) and StepGen 0x42 (swap bit)
 CASES += [("5i20", "SV2ST2_PRB", m) for m in ("encoder", "stepgen", "all")]
+# Every other local-bus firmware the fast model covers (auto runs them fast)
+OTHERS = [
+    ("5i20", "SVST2_4_7I47"),
+    ("5i23", "SVST8_4"),
+    ("4i65", "SVST8_4"),
+    ("4i68", "SVST8_4"),
+    ("5i22-1", "SVST8_8"),
+    ("5i22-1", "SV16"),
+    ("5i22-1.5", "SVST8_8"),
+    ("3x20-1", "SV24"),
+    ("3x20-1", "SVST16_24"),
+]
 
 
 def _fastdiff(*args: str, timeout: float = 300) -> subprocess.CompletedProcess[str]:
@@ -44,6 +56,13 @@ def test_fast_model_equals_rtl(board: str, fw: str, module: str) -> None:
     assert edges > 20, r.stdout
     skipped = int(r.stdout.split("skipped ")[1].split()[0])
     assert skipped > 0, r.stdout
+
+
+@pytest.mark.parametrize("board,fw", OTHERS)
+def test_fast_model_equals_rtl_other_boards(board: str, fw: str) -> None:
+    r = _fastdiff("--board", board, "--firmware", fw, "--module", "all", "--ops", "500")
+    assert r.returncode == 0, r.stderr + r.stdout
+    assert "models agree" in r.stdout
 
 
 def test_fastdiff_rejects_bad_arguments() -> None:
