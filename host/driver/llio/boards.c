@@ -47,6 +47,9 @@ static const struct hm2_board_info boards[] = {
      * Spartan-6 7i92's (unconfirmed) */
     {"7i90", {"P1", "P2", "P3"}, 3, 24, "6slx9tqg144", 2, 0, 0, 100000000, 200000000, 0, NULL, 0},
     {"7i92", {"P2", "P1"}, 2, 17, "6slx9tqg144", 4, 0, 0, 100000000, 200000000, 1, NULL, 0},
+    /* 7I76E: the built-in 7I76 on the on-card port, P1 and P2 headers */
+    {"7i76e", {"on-card", "P1", "P2"}, 3, 17, "6slx16ftg256", 4, 0, 0, 100000000, 200000000, 1,
+     NULL, 0},
     {"7i96", {"TB3", "TB1", "P1"}, 3, 17, "6slx9tqg144", 4, 0, 0, 100000000, 200000000, 1,
      pins_7i96, NPINS_7I96},
     {"7i96s", {"TB3", "TB1", "P1"}, 3, 17, "T20F256", 4, 0, 0, 100000000, 200000000, 1,

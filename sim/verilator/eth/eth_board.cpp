@@ -27,6 +27,9 @@ struct EthModel {
 // flash: fallback at 0, user configuration at 2 MiB.  64 KiB sectors.
 const EthModel kModels[] = {
     {"7i92", "7I92", {2u << 20, 0x14, 0x100000, 0x10000, 0x10000}},
+    // 7I76E: Spartan-6 LX16, 16 Mbit flash laid out like the 7i92's
+    // (assumed: mesaflash's 7I76E figures are not recorded here).
+    {"7i76e", "7I76E-16", {2u << 20, 0x14, 0x100000, 0x10000, 0x10000}},
     {"7i96s", "7I96S", {4u << 20, 0x15, 0x200000, 0x0, 0x10000}},
 };
 

@@ -50,7 +50,7 @@ void usage(FILE *f)
                  "              [--spin USEC] [--socket-mode OCTAL] [--machine FILE] [--sserial P.C=TYPE]...\n"
                  "              [--flash FILE] [--flash-part m25p16] [--flash-speedup N]\n"
                  "              [--model rtl|fast|auto]\n"
-                 "       vboard --udp ADDR[:PORT] [--udp-tick USEC | --udp-rt] [--socket PATH] --board 7i92|7i96s\n"
+                 "       vboard --udp ADDR[:PORT] [--udp-tick USEC | --udp-rt] [--socket PATH] --board 7i76e|7i92|7i96s\n"
                  "              [--firmware NAME] [--flash FILE] ...\n"
                  "       vboard --list\n"
                  "A virtual FPGA board running Verilated firmware; see docs/vboard.md.\n");

@@ -494,7 +494,7 @@ int hm2_eth_setup(struct hm2_eth_board *b, const char *ip, int index, hm2_log_fn
     b->info = hm2_eth_board_of(b->lbp16_name);
     if (!b->info) {
         logf_(b, HM2_ERR,
-              "hm2_eth: %s: board '%.16s' is not an Ethernet board this driver knows (7I92, "
+              "hm2_eth: %s: board '%.16s' is not an Ethernet board this driver knows (7I76E, 7I92, "
               "7I96, 7I96S)",
               ip, b->lbp16_name);
         hm2_eth_teardown(b, false);
