@@ -43,7 +43,7 @@ void hm2_log_printf(hm2_log_fn log, void *ctx, int level, const char *fmt, ...)
 {
     if (!log)
         return;
-    char line[512];
+    char line[1024]; /* long enough for a path and the reason (dlerror) */
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(line, sizeof(line), fmt, ap);

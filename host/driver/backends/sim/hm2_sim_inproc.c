@@ -5,7 +5,6 @@
 
 #include <dlfcn.h>
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,20 +13,8 @@
 
 #include "hm2/bitfile.h"
 
-static void logf_(hm2_log_fn log, void *ctx, int level, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static void logf_(hm2_log_fn log, void *ctx, int level, const char *fmt, ...)
-{
-    char line[768];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof(line), fmt, ap);
-    va_end(ap);
-    if (log)
-        log(ctx, level, line);
-}
-
-#define IB_LOG(ib, level, ...) logf_((ib)->log, (ib)->log_ctx, level, __VA_ARGS__)
+/* Messages go to the board's log sink (hm2_log_printf, hostmot2/msg.c). */
+#define IB_LOG(ib, level, ...) hm2_log_printf((ib)->log, (ib)->log_ctx, level, __VA_ARGS__)
 
 /* ---- the library ---- */
 
@@ -59,24 +46,28 @@ int hm2_sim_inproc_lib_open(struct hm2_sim_inproc_lib *lib, const char *path, hm
     else if (env && *env)
         snprintf(lib->path, sizeof(lib->path), "%s", env);
     else if (default_path(lib->path, sizeof(lib->path))) {
-        logf_(log, log_ctx, HM2_ERR, "hm2_sim: cannot tell where the module was loaded from to "
-                                     "find %s; set HM2_SIM_INPROC_LIB", VBI_LIBRARY);
+        hm2_log_printf(log, log_ctx, HM2_ERR,
+                       "hm2_sim: cannot tell where the module was loaded from to find %s; set "
+                       "HM2_SIM_INPROC_LIB",
+                       VBI_LIBRARY);
         return -ENOENT;
     }
     lib->dl = dlopen(lib->path, RTLD_NOW | RTLD_LOCAL);
     if (!lib->dl) {
-        logf_(log, log_ctx, HM2_ERR, "hm2_sim: inproc=1: cannot load the in-process board "
-                                     "library %s: %s (built by `make build` as lib/%s)",
-              lib->path, dlerror(), VBI_LIBRARY);
+        hm2_log_printf(log, log_ctx, HM2_ERR,
+                       "hm2_sim: inproc=1: cannot load the in-process board library %s: %s "
+                       "(built by `make build` as lib/%s)",
+                       lib->path, dlerror(), VBI_LIBRARY);
         return -ENOENT;
     }
     vbi_get_api_fn get = (vbi_get_api_fn)dlsym(lib->dl, VBI_ENTRY);
     const vbi_api_t *api = get ? get() : NULL;
     if (!api || api->abi != VBI_ABI) {
-        logf_(log, log_ctx, HM2_ERR, "hm2_sim: inproc=1: %s is not an in-process board library "
-                                     "of this build (%s; want ABI %u)",
-              lib->path, !get ? "no " VBI_ENTRY : !api ? "no function table" : "other ABI",
-              VBI_ABI);
+        hm2_log_printf(log, log_ctx, HM2_ERR,
+                       "hm2_sim: inproc=1: %s is not an in-process board library of this build "
+                       "(%s; want ABI %u)",
+                       lib->path, !get ? "no " VBI_ENTRY : !api ? "no function table" : "other ABI",
+                       VBI_ABI);
         dlclose(lib->dl);
         lib->dl = NULL;
         return -ENOEXEC;
