@@ -409,9 +409,10 @@ def _run_tcl(
     twopass: bool,
 ) -> None:
     """A .tcl HALFILE: haltcl runs it with the rule applied to every HAL
-    command it makes (tclfilter)."""
+    command it makes (tclfilter); the motion stand-in is loaded by haltcl
+    before motmod's command when that is the first."""
     assert step.src is not None
-    server = tclfilter.Server(ini, ctx, hw.hook)
+    server = tclfilter.Server(ini, ctx, hw.hook, lambda: _standin_lines(ctx))
     try:
         wrapper = sess.work / f"compat-tcl-{step.src.stem}.tcl"
         # the configuration's own file runs from its copy (error lines name
@@ -468,9 +469,52 @@ def _run_steps(
             else (_prepare(step, ini, ctx, hw, sess.work))
         )
         res.hardware = hw.used
+        _load_standin(sess, ctx, res)
         _, out = sess.halcmd("-k", "-i", "compat.ini", "-f", rel)
         _parse_output(out, step.fr)
     res.hardware = hw.used
+
+
+def standin_rtlib(bindir: Path) -> Path:
+    """The motion stand-in's modules (tests/compat/standin), built with our
+    halcompile into the build's compat/standin folder when missing or older
+    than their .comp files; returns that folder (for HAL_RTLIB_PATH)."""
+    out = bindir.parent / "compat" / "standin"
+    out.mkdir(parents=True, exist_ok=True)
+    for comp in sorted((HERE / "standin").glob("*.comp")):
+        so = out / (comp.stem + ".so")
+        if so.exists() and so.stat().st_mtime >= comp.stat().st_mtime:
+            continue
+        r = subprocess.run(
+            [str(bindir / "halcompile"), "-c", str(comp)],
+            cwd=out,
+            capture_output=True,
+            text=True,
+        )
+        if r.returncode != 0 or not so.exists():
+            raise RuntimeError(f"halcompile -c {comp.name} failed: {(r.stderr or r.stdout)[-300:]}")
+    return out
+
+
+def _standin_lines(ctx: halprep.Context) -> list[str]:
+    """The HAL lines that load the motion stand-in, once, after the rule has
+    met a motmod line (ctx.standin_joints); none otherwise."""
+    if not ctx.standin_joints or ctx.standin_loaded:
+        return []
+    ctx.standin_loaded = True
+    return halprep.standin_lines(ctx.standin_joints)
+
+
+def _load_standin(sess: session.Session, ctx: halprep.Context, res: ConfigResult) -> None:
+    """Before a prepared .hal file runs: loads the motion stand-in when the
+    file (or an earlier one) has a motmod line; a failure is the run's error."""
+    lines = _standin_lines(ctx)
+    if not lines:
+        return
+    path = sess.work / "compat-motion-standin.hal"
+    path.write_text("\n".join(lines) + "\n")
+    rc, out = sess.halcmd("-k", "-f", path.name)
+    res.run_error = res.run_error or _run_error(rc, out, "motion stand-in")
 
 
 def _run_error(rc: int, out: str, what: str) -> str:
@@ -501,9 +545,12 @@ def run_config(
         steps = _plan(res, ini, ini_path.parent, work)
         ctx = _context_for(ini_path.parent)
         sess = session.Session(bindir, work, "compat.ini", t0 + timeout)
+        sess.env["HAL_RTLIB_PATH"] = ":".join(
+            p for p in (str(standin_rtlib(bindir)), os.environ.get("HAL_RTLIB_PATH", "")) if p
+        )
         _run_steps(sess, steps, ini, ctx, hw, res)
         rc, out = sess.halcmd("simrun", RUN_NS)
-        res.run_error = _run_error(rc, out, f"simrun {RUN_NS}")
+        res.run_error = res.run_error or _run_error(rc, out, f"simrun {RUN_NS}")
     except session.Timeout:
         res.run_error = f"no result within {timeout:.0f} s"
     except Exception as e:  # a broken configuration is a result, not a crash

@@ -10,6 +10,9 @@
 #   keep                  the command runs as written
 #   remove PART WHY       the command does not run (its result is empty)
 #   rewrite PART WHY W... the words W... run instead
+# Before the answer, make compat may send `first W...` lines: HAL commands
+# to run first (the motion stand-in at motmod's line); an error in one is
+# the command's error.
 # Words travel hex-encoded (UTF-8), separated by blanks, one request a line.
 
 namespace eval ::compat {
@@ -39,11 +42,21 @@ namespace eval ::compat {
             lappend req [hex $w]
         }
         puts $sock [join $req " "]
-        if {[gets $sock reply] < 0} {
-            error "compat: make compat did not answer for: $words"
+        while 1 {
+            if {[gets $sock reply] < 0} {
+                error "compat: make compat did not answer for: $words"
+            }
+            set parts [split $reply " "]
+            set kind [lindex $parts 0]
+            if {$kind ne "first"} {
+                break
+            }
+            set cmd {}
+            foreach h [lrange $parts 1 end] {
+                lappend cmd [unhex $h]
+            }
+            ::compat::real::hal {*}$cmd
         }
-        set parts [split $reply " "]
-        set kind [lindex $parts 0]
         if {$kind ne "rewrite"} {
             return $kind
         }

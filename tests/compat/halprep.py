@@ -118,6 +118,16 @@ GUI_PREFIXES = ("axisui.", "pyvcp.", "gladevcp.", "gmoccapy.", "touchy.", "qtvcp
 
 HAL_COMMANDS_WITH_OBJECTS = {"setp", "getp", "ptype", "unlinkp"}
 
+# The motion stand-in (tests/compat/standin): when a configuration loads
+# motmod, compat_motion exports motion's two functions (no-ops) and
+# compat_joint the pins joint.N.motor-pos-cmd and joint.N.motor-pos-fb for
+# motmod's num_joints (16, motmod's maximum, when the line does not say).
+# Lines naming only these objects are kept: LinuxCNC's hookup_moveoff.tcl
+# finds motion's functions in `show thread` and reconnects these pins.
+STANDIN_MODULES = ("compat_motion", "compat_joint")
+STANDIN_JOINT_PIN = re.compile(r"joint\.(\d+)\.motor-pos-(cmd|fb)")
+STANDIN_MAX_JOINTS = 16
+
 
 def is_kinematics(module: str) -> bool:
     return module in KINEMATICS or module.endswith("kins")
@@ -149,9 +159,24 @@ class Context:
     live_signals: set[str] = field(default_factory=set)
     # files `source`d by the configuration's .hal files, already prepared
     prepared_sources: set[str] = field(default_factory=set)
+    # joints of the motion stand-in, set by the motmod line (0: no motmod
+    # line yet); standin_loaded once the stand-in is in the session
+    standin_joints: int = 0
+    standin_loaded: bool = False
+
+    def is_standin(self, name: str) -> bool:
+        """Whether the motion stand-in has this object."""
+        if not self.standin_joints:
+            return False
+        if name in MOTION_FUNCTIONS:
+            return True
+        m = STANDIN_JOINT_PIN.fullmatch(name)
+        return bool(m) and int(m.group(1)) < self.standin_joints
 
     def owner(self, name: str) -> str | None:
         """The removed part a pin/param/function name belongs to, or None."""
+        if self.is_standin(name):
+            return None
         if name in MOTION_FUNCTIONS:
             return "motion"
         for prefix, part in self.prefixes.items():
@@ -251,6 +276,25 @@ def motmod_threads(orig_words: list[str], res_words: list[str]) -> str:
     return f"loadrt threads {args}"
 
 
+def motmod_joints(res_words: list[str]) -> int:
+    """The motion stand-in's joints for a motmod line (its words with INI
+    values substituted): num_joints, STANDIN_MAX_JOINTS when missing or not
+    a number."""
+    for w in res_words:
+        if w.startswith("num_joints=") and w[11:].isdigit():
+            return max(1, min(int(w[11:]), STANDIN_MAX_JOINTS))
+    return STANDIN_MAX_JOINTS
+
+
+def standin_lines(joints: int) -> list[str]:
+    """The HAL lines that load the motion stand-in with this many joints."""
+    names = ",".join(f"joint.{i}" for i in range(joints))
+    return [
+        f"loadrt {STANDIN_MODULES[0]} names={','.join(sorted(MOTION_FUNCTIONS))}",
+        f"loadrt {STANDIN_MODULES[1]} names={names}",
+    ]
+
+
 ARROWS = ("=>", "<=", "<=>")
 
 
@@ -294,6 +338,7 @@ def classify(line: str, ini: Ini, ctx: Context) -> Action:
         if missing and (missing.group(2) or missing.group(4)) == "KINEMATICS":
             return Action("remove", "kinematics", f"loadrt {mod} (no such INI value)")
         if mod == "motmod":
+            ctx.standin_joints = ctx.standin_joints or motmod_joints(flat)
             return Action(
                 "rewrite",
                 "motion",

@@ -90,8 +90,16 @@ def wrapper(port: int, file: Path, args: list[str], twopass: bool) -> str:
 class Server:
     """A local TCP server answering one haltcl's filter requests."""
 
-    def __init__(self, ini: halprep.Ini, ctx: halprep.Context, hook: Hook) -> None:
-        self.ini, self.ctx, self.hook = ini, ctx, hook
+    def __init__(
+        self,
+        ini: halprep.Ini,
+        ctx: halprep.Context,
+        hook: Hook,
+        first: Callable[[], list[str]] | None = None,
+    ) -> None:
+        """`first()`, called after each decision, returns HAL lines haltcl
+        runs before the command (make compat's motion stand-in)."""
+        self.ini, self.ctx, self.hook, self.first = ini, ctx, hook, first
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         self.sock.bind(("127.0.0.1", 0))
         self.sock.listen(1)
@@ -129,6 +137,9 @@ class Server:
                     line, buf = buf.split(b"\n", 1)
                     words = [bytes.fromhex(h).decode() for h in line.decode().split()]
                     action = decide(words, self.ini, self.ctx, self.hook)
+                    for cmd in self.first() if self.first is not None else []:
+                        hexed = (_hex(w) for w in halprep.split_words(cmd))
+                        conn.sendall((" ".join(["first", *hexed]) + "\n").encode())
                     if action.kind != "keep" or action.why:
                         self.actions.append((len(self.actions) + 1, action))
                     conn.sendall((reply(action) + "\n").encode())

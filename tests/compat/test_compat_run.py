@@ -77,6 +77,33 @@ for {set j 0} {$j < $::KINS(JOINTS)} {incr j} {
 }
 setp or2.0.in0 [lindex $::argv 0]-6
 net tcl-in or2.0.in1
+# as LinuxCNC's hookup_moveoff.tcl does: motion's functions found in the
+# servo thread, a joint position pin reconnected (the motion stand-in)
+if {![string match "*2 motion-controller*" [hal show thread servo-thread]]} {
+    error "motion-controller is not the servo thread's function 2"
+}
+unlinkp joint.0.motor-pos-cmd
+net tcl-pos joint.0.motor-pos-cmd => joint.0.motor-pos-fb
+"""
+
+# motmod loaded by a Tcl file (as LinuxCNC's sim_lib.tcl does): the
+# stand-in is loaded there, with motmod's num_joints
+MOT_INI = """
+[KINS]
+JOINTS = 2
+[HAL]
+HALFILE = mot.tcl
+"""
+
+MOT_TCL = """loadrt motmod servo_period_nsec=1000000 num_joints=$::KINS(JOINTS)
+addf motion-command-handler servo-thread
+addf motion-controller servo-thread
+net p1 joint.1.motor-pos-cmd => joint.1.motor-pos-fb
+net p2 joint.2.motor-pos-cmd => joint.2.motor-pos-fb
+set t [hal show thread servo-thread]
+if {![string match "*1 motion-command-handler*2 motion-controller*" $t]} {
+    error "no motion functions in: $t"
+}
 """
 
 BAD_INI = """
@@ -113,6 +140,7 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, list[dict[s
     for d, ini, hal, tcl in (
         ("good", GOOD_INI, GOOD_HAL, GOOD_TCL),
         ("bad", BAD_INI, BAD_HAL, BAD_TCL),
+        ("mot", MOT_INI, "", MOT_TCL),
     ):
         cfg = samples / "set" / d
         cfg.mkdir(parents=True)
@@ -137,7 +165,7 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, list[dict[s
 def test_exit_status_and_only_the_chosen_set(run: Run) -> None:
     rc, text, data, _ = run
     assert rc == 1, text  # bad.ini fails
-    assert [d["ini"] for d in data] == ["set/bad/bad.ini", "set/good/good.ini"]
+    assert [d["ini"] for d in data] == ["set/bad/bad.ini", "set/good/good.ini", "set/mot/mot.ini"]
 
 
 def test_good_configuration_loads(run: Run) -> None:
@@ -160,9 +188,11 @@ def test_good_configuration_loads(run: Run) -> None:
     assert good["run_error"] == ""
     assert good["hardware"] == ["vboard 5i20", "vparport"]
     assert good["postgui"] == ["panel.hal"]
-    assert files["good.hal"]["removed"] == {"kinematics": 1, "motion": 3, "iocontrol": 2}
+    # motion's addf lines and the net of joint.0.motor-pos-cmd are kept:
+    # the motion stand-in has them
+    assert files["good.hal"]["removed"] == {"kinematics": 1, "motion": 1, "iocontrol": 2}
     # (one rewritten net is in good-sub.hal, which good.hal sources)
-    assert files["good.hal"]["rewritten"] == {"board": 2, "motion": 4}
+    assert files["good.hal"]["rewritten"] == {"board": 2, "motion": 3}
     assert "| set/good/good.ini | good.hal | loaded |" in text
 
 
@@ -201,8 +231,22 @@ def test_prepared_files_keep_their_lines(run: Run) -> None:
     )
     assert prepared[4].startswith("loadrt hm2_sim socket=") and "board=5i20" in prepared[4]
     assert 'cfg="sim:' in prepared[5]
-    assert prepared[14].startswith("net xstep => hm2_5i20.0.stepgen.00.position-cmd")
+    assert prepared[9:11] == GOOD_HAL.split("\n")[9:11]  # motion's addf lines kept
+    assert prepared[14] == "net xstep joint.0.motor-pos-cmd => hm2_5i20.0.stepgen.00.position-cmd"
     assert prepared[16].startswith("net in0 parport.0.pin-11-in => and2.0.in0  #compat")
     assert prepared[17] == "#compat: (continued)"
     sub = (base / "kept" / "set" / "good" / "good.ini" / "good-sub.hal").read_text()
     assert sub.startswith("net subpos => and2.0.in1  #compat"), sub
+
+
+def test_motion_standin_loaded_by_a_tcl_motmod_line(run: Run) -> None:
+    """motmod in a Tcl file: the stand-in is loaded before the command runs,
+    with its num_joints (2): joint.1's pins exist, joint.2's net is still
+    removed (motmod would not have that joint either)."""
+    _, _, data, _ = run
+    mot = data[2]
+    files = {f["name"]: f for f in mot["files"]}  # type: ignore[union-attr]
+    assert mot["run_error"] == ""
+    assert files["mot.tcl"]["status"] == "loaded", files["mot.tcl"]
+    assert files["mot.tcl"]["removed"] == {"motion": 1}
+    assert files["mot.tcl"]["rewritten"] == {"motion": 1}

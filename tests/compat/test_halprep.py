@@ -254,3 +254,44 @@ def test_pendant_absent() -> None:
     a = act("net pendant:jog-x xhc-hb04.jog.scale => halui.axis.jog-speed", ctx)
     assert (a.kind, a.part) == ("remove", "halui/pendant")
     assert act("setp pid.0.Pgain 1", ctx).kind == "keep"
+
+
+def test_motion_standin_objects_are_kept_after_motmod() -> None:
+    """After a motmod line the stand-in has motion's two functions and the
+    position pins of motmod's num_joints joints ([KINS]JOINTS = 3): lines
+    naming only those are kept; every other motion object is still removed."""
+    ctx = hp.Context()
+    assert act("addf motion-controller servo-thread", ctx).kind == "remove"  # no motmod yet
+    assert act("loadrt motmod servo_period_nsec=1000 num_joints=[KINS]JOINTS", ctx).kind == (
+        "rewrite"
+    )
+    assert ctx.standin_joints == 3
+    for line in (
+        "addf motion-command-handler servo-thread",
+        "addf motion-controller servo-thread 2",
+        "net p joint.2.motor-pos-cmd => joint.2.motor-pos-fb",
+        "unlinkp joint.0.motor-pos-cmd",
+    ):
+        assert act(line, ctx) == hp.KEEP, line
+    a = act("net p joint.3.motor-pos-cmd => stepgen.0.position-cmd", ctx)  # no joint 3
+    assert (a.kind, a.text) == ("rewrite", "net p => stepgen.0.position-cmd")
+    assert act("setp joint.0.backlash 0.1", ctx).part == "motion"
+    assert act("net en <= joint.0.amp-enable-out", ctx).kind == "remove"
+    assert hp.standin_lines(2) == [
+        "loadrt compat_motion names=motion-command-handler,motion-controller",
+        "loadrt compat_joint names=joint.0,joint.1",
+    ]
+
+
+@pytest.mark.parametrize(
+    "words,joints",
+    [
+        (["loadrt", "motmod", "num_joints=4"], 4),
+        (["loadrt", "motmod"], 16),  # motmod's maximum when not given
+        (["loadrt", "motmod", "num_joints=$n"], 16),  # not a number
+        (["loadrt", "motmod", "num_joints=40"], 16),
+        (["loadrt", "motmod", "num_joints=0"], 1),
+    ],
+)
+def test_motion_standin_joint_count(words: list[str], joints: int) -> None:
+    assert hp.motmod_joints(words) == joints
