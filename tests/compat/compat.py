@@ -485,14 +485,20 @@ def standin_rtlib(bindir: Path) -> Path:
         so = out / (comp.stem + ".so")
         if so.exists() and so.stat().st_mtime >= comp.stat().st_mtime:
             continue
-        r = subprocess.run(
-            [str(bindir / "halcompile"), "-c", str(comp)],
-            cwd=out,
-            capture_output=True,
-            text=True,
-        )
-        if r.returncode != 0 or not so.exists():
-            raise RuntimeError(f"halcompile -c {comp.name} failed: {(r.stderr or r.stdout)[-300:]}")
+        # built aside and renamed into place: concurrent runs (the tests)
+        # never load a half-written module
+        with tempfile.TemporaryDirectory(dir=out) as tmp:
+            r = subprocess.run(
+                [str(bindir / "halcompile"), "-c", str(comp)],
+                cwd=tmp,
+                capture_output=True,
+                text=True,
+            )
+            built = Path(tmp) / so.name
+            if r.returncode != 0 or not built.exists():
+                why = (r.stderr or r.stdout)[-300:]
+                raise RuntimeError(f"halcompile -c {comp.name} failed: {why}")
+            os.replace(built, so)
     return out
 
 
