@@ -63,6 +63,8 @@ PLANT = [
     VB / "src" / "plant" / f"{n}.cpp"
     for n in ("config", "drive_input", "encoder", "machine", "motor", "toml")
 ]
+# The server also owns the Smart Serial remote models (vboard --sserial).
+SSERIAL = [VB / "src" / "sserial" / f"{n}.cpp" for n in ("link", "r7i76", "r7i77", "remotes")]
 
 TARGETS: dict[str, tuple[str, list[str], list[Path]]] = {
     "hm2_bitfile": ("clang", C_FLAGS, [HERE / "fuzz_hm2_bitfile.c", *HM2CORE]),
@@ -92,6 +94,7 @@ TARGETS: dict[str, tuple[str, list[str], list[Path]]] = {
             VB / "src" / "fwimage.cpp",
             VB / "epp" / "epp_port_board.cpp",
             *PLANT,
+            *SSERIAL,
         ],
     ),
 }

@@ -58,7 +58,8 @@ def vcd_vector_changes(text: str, var: str, width: int) -> list[tuple[int, int]]
 
 def test_capture_merged_with_firmware_dump(tmp_path: Path) -> None:
     sock = tmp_path / "vb.sock"
-    with vboard.VBoardProcess(sock, "5i20", "SVST8_4"):
+    # the firmware's waveforms come from the Verilated model (the fast model has none)
+    with vboard.VBoardProcess(sock, "5i20", "SVST8_4", args=["--model", "rtl"]):
         r = halrun(tmp_path, HAL.format(sock=sock))
     assert r.returncode == 0, r.stderr
     assert not (tmp_path / "merged.vcd.board.vcd").exists(), "the board's own dump is removed"

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -41,7 +42,7 @@ def load(sock: Path, config: str = "") -> str:
 
 
 @pytest.fixture
-def board(tmp_path: Path):  # type: ignore[no-untyped-def]
+def board(tmp_path: Path) -> Iterator[vboard.VBoardProcess]:
     with vboard.VBoardProcess(tmp_path / "b.sock", "7i90") as vb:
         yield vb
 
