@@ -167,8 +167,16 @@ class Page:
     def type_into(self, selector: str, text: str) -> None:
         """Focus the field by clicking it, select what is there, type text."""
         self.click(selector)
-        self.eval(f"document.querySelector({json.dumps(selector)}).select()")
+        # the click gives the field focus; a page refresh moving the layout between
+        # measuring and pressing can make it miss, and then the text would go nowhere
+        sel = json.dumps(selector)
+        self.eval(
+            f"(() => {{ const e = document.querySelector({sel}); e.focus(); e.select(); }})()"
+        )
         self.call("Input.insertText", text=text)
+        got = self.eval(f"document.querySelector({sel}).value")
+        if got != text:
+            raise CdpError(f"typed {text!r} into {selector}, the field holds {got!r}")
         self.eval(
             f"document.querySelector({json.dumps(selector)})"
             ".dispatchEvent(new Event('change', {bubbles: true}))"
